@@ -1,0 +1,26 @@
+#pragma once
+/// The unit of data every stage consumes: one sweep of a range sensor.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace revisit {
+
+struct Scan {
+    std::size_t index = 0;                 ///< position in the sequence, from 0
+    double timestamp = 0.0;                ///< [s] sensor clock (KITTI: times.txt)
+    std::string sensor_label;              ///< e.g. "VELODYNE", "LASER"; file format name when unknown
+    std::vector<Eigen::Vector3f> points;   ///< [m] in the sensor frame, finite only
+    std::vector<float> intensities;        ///< one per point, or empty when the format has none
+    std::vector<float> point_times;        ///< [s] relative to `timestamp`, one per point, or empty
+    std::optional<Eigen::Isometry3d> T_world_sensor;  ///< reference (ground-truth) pose, if known
+    std::optional<Eigen::Isometry3d> T_odom_sensor;   ///< odometry prior (e.g. wheel odometry), if known
+
+    bool has_intensities() const { return !intensities.empty(); }
+    bool has_point_times() const { return !point_times.empty(); }
+};
+
+}  // namespace revisit

@@ -1,0 +1,56 @@
+#pragma once
+/// Streaming dataset readers: one scan at a time, never the whole sequence in memory.
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/scan.hpp"
+
+namespace revisit {
+
+struct ReaderOptions {
+    std::string sensor_label;                ///< rawlogs: keep only this sensor label (empty: all)
+    bool kitti_vertical_correction = false;  ///< rotate KITTI points by 0.205 deg about the axis normal to their azimuth
+    std::filesystem::path poses_file;        ///< reference poses (KITTI 3x4 or TUM) overriding the dataset's own
+};
+
+struct DatasetInfo {
+    std::string format;                    ///< "kitti", "pcd", "ply" or "rawlog"
+    std::filesystem::path path;            ///< what the user gave
+    std::optional<std::size_t> num_scans;  ///< known up front for folders; rawlogs count while reading
+    bool has_reference_poses = false;      ///< known up front (folders); rawlogs: after reading
+    std::filesystem::path poses_file;      ///< where reference poses came from, if any
+};
+
+/// What a reader dropped or skipped, so the user can be told once at the end.
+struct ReadStats {
+    std::size_t scans = 0;
+    std::size_t points = 0;
+    std::size_t non_finite_points = 0;                  ///< NaN/inf points dropped
+    std::map<std::string, std::size_t> skipped_classes;  ///< rawlog objects that carry no scan
+    std::map<std::string, std::size_t> skipped_sensors;  ///< scans filtered out by sensor label
+};
+
+class Reader {
+  public:
+    virtual ~Reader() = default;
+    /// The next scan, or nullopt at the end. Throws DatasetError on corrupt input.
+    virtual std::optional<Scan> Next() = 0;
+    virtual const DatasetInfo& Info() const = 0;
+    const ReadStats& Stats() const { return stats_; }
+
+  protected:
+    ReadStats stats_;
+};
+
+/// Picks the reader from the path: a folder with velodyne/ (or sequences/NN + poses/NN.txt),
+/// a folder of .pcd or .ply files, or a .rawlog / .rawlog.gz file. Throws DatasetError.
+std::unique_ptr<Reader> OpenDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
+
+/// One line summary of ReadStats' drops and skips, empty when nothing was dropped.
+std::string DescribeDrops(const ReadStats& stats);
+
+}  // namespace revisit

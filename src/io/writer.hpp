@@ -1,0 +1,43 @@
+#pragma once
+/// Dataset writers: the formats the readers read back.
+#include <filesystem>
+#include <memory>
+
+#include "core/scan.hpp"
+
+namespace revisit {
+
+struct WriterOptions {
+    /// Rawlogs: store scans as CObservation2DRangeScan instead of CObservationPointCloud.
+    /// The points must be planar (z = 0) and come from `planar_beams` beams spread evenly over
+    /// `planar_aperture` [rad] centred on +x; beams without a point are stored as invalid.
+    bool planar_as_range_scan = false;
+    int planar_beams = 360;
+    double planar_aperture = 2.0 * 3.14159265358979323846;  ///< [rad]
+    double planar_max_range = 30.0;                          ///< [m]
+    bool write_odometry = true;  ///< rawlogs: CObservationOdometry before each scan that has T_odom_sensor
+};
+
+class DatasetWriter {
+  public:
+    virtual ~DatasetWriter() = default;
+    virtual void Write(const Scan& scan) = 0;
+    /// Writes what is kept until the end (poses.txt, times.txt) and closes files. Called by the destructor too.
+    virtual void Finish() = 0;
+};
+
+/// KITTI folder: velodyne/NNNNNN.bin (float32 x y z i), poses.txt (reference poses, if every scan has
+/// one), times.txt, calib.txt with identity Tr. Refuses an existing non-empty folder unless `force`.
+std::unique_ptr<DatasetWriter> CreateKittiWriter(const std::filesystem::path& folder, bool force = false);
+
+/// MRPT rawlog (observation-only layout, gzip when the name ends in .gz): CObservationPointCloud per scan
+/// (or CObservation2DRangeScan), CObservationOdometry for priors, and the reference pose as a
+/// CObservationRobotPose labelled "GROUND_TRUTH".
+std::unique_ptr<DatasetWriter> CreateRawlogWriter(const std::filesystem::path& file,
+                                                  const WriterOptions& options = {}, bool force = false);
+
+/// Picks the writer from the path: a name ending in .rawlog or .rawlog.gz, else a KITTI folder.
+std::unique_ptr<DatasetWriter> CreateWriter(const std::filesystem::path& path, const WriterOptions& options = {},
+                                            bool force = false);
+
+}  // namespace revisit
