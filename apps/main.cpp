@@ -1,1 +1,27 @@
-int main() { return 0; }
+/// `revisit`: loop closures for range-sensor sequences. Parses, dispatches, reports errors.
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App root{
+        "revisit finds loop closures in LiDAR and 2D-laser sequences and corrects the drifted trajectory.\n"
+        "Datasets: KITTI-style folders (velodyne/*.bin), folders of .pcd/.ply scans, MRPT rawlogs.\n"
+        "Run `revisit SUBCOMMAND --help` for each command's options and examples.",
+        "revisit"};
+    root.require_subcommand(1);
+    root.set_version_flag("--version", "revisit 0.1.0");
+    revisit::app::Action action;
+    revisit::app::AddInfoCommand(root, action);
+    revisit::app::AddConvertCommand(root, action);
+    try {
+        root.parse(argc, argv);
+        return action ? action() : 0;
+    } catch (const CLI::ParseError& e) {
+        return root.exit(e);
+    } catch (const std::exception& e) {
+        revisit::app::EndProgress();
+        std::cerr << "revisit: " << e.what() << '\n';
+        return 1;
+    }
+}

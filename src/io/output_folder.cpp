@@ -1,0 +1,30 @@
+#include "io/output_folder.hpp"
+
+#include "core/error.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+
+void PrepareOutputFolder(const fs::path& folder, bool force) {
+    if (folder.empty()) throw DatasetError(folder, "no output folder given");
+    std::error_code ec;
+    if (fs::exists(folder)) {
+        if (!fs::is_directory(folder)) throw DatasetError(folder, "exists and is not a folder");
+        if (!fs::is_empty(folder) && !force) {
+            throw DatasetError(folder, "output folder is not empty; choose another or pass --force to write into it");
+        }
+    }
+    fs::create_directories(folder, ec);
+    if (ec) throw DatasetError(folder, "cannot create folder: " + ec.message());
+}
+
+void PrepareOutputFile(const fs::path& file, bool force) {
+    if (file.empty()) throw DatasetError(file, "no output file given");
+    if (fs::exists(file) && !force) throw DatasetError(file, "file exists; choose another name or pass --force");
+    if (fs::is_directory(file)) throw DatasetError(file, "is a folder, expected a file name");
+    std::error_code ec;
+    if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
+    if (ec) throw DatasetError(file.parent_path(), "cannot create folder: " + ec.message());
+}
+
+}  // namespace revisit

@@ -1,0 +1,180 @@
+#include "io/trajectory_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/se3.hpp"
+
+namespace revisit {
+namespace {
+
+std::ifstream OpenText(const std::filesystem::path& file) {
+    if (file.empty()) throw DatasetError(file, "no file name given");
+    if (!std::filesystem::is_regular_file(file)) throw DatasetError(file, "no such file");
+    std::ifstream in(file);
+    if (!in) throw DatasetError(file, "cannot open for reading");
+    return in;
+}
+
+std::ofstream OpenOutput(const std::filesystem::path& file) {
+    std::ofstream out(file);
+    if (!out) throw DatasetError(file, "cannot open for writing");
+    out << std::setprecision(9) << std::fixed;
+    return out;
+}
+
+/// Parses all numbers of a line; false if any token is not a finite number.
+bool ParseNumbers(const std::string& line, std::vector<double>& values) {
+    values.clear();
+    std::istringstream tokens(line);
+    std::string token;
+    while (tokens >> token) {
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0' || !std::isfinite(value)) return false;
+        values.push_back(value);
+    }
+    return true;
+}
+
+bool IsBlankOrComment(const std::string& line) {
+    const auto first = line.find_first_not_of(" \t\r");
+    return first == std::string::npos || line[first] == '#';
+}
+
+/// Calls `on_values(values, line_number)` for every data line with `expected` numbers.
+template <typename OnValues>
+void ForEachDataLine(const std::filesystem::path& file, std::size_t expected, const char* what, OnValues on_values) {
+    auto in = OpenText(file);
+    std::string line;
+    std::vector<double> values;
+    std::size_t line_number = 0;
+    while (std::getline(in, line)) {
+        ++line_number;
+        if (IsBlankOrComment(line)) continue;
+        if (!ParseNumbers(line, values) || values.size() != expected) {
+            throw DatasetError(file, std::string("malformed ") + what + " line: expected " +
+                                         std::to_string(expected) + " numbers",
+                               line_number);
+        }
+        on_values(values, line_number);
+    }
+}
+
+Eigen::Isometry3d CleanPose(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const std::filesystem::path& file,
+                            std::size_t line_number) {
+    // Text files round rotations to a few digits; a matrix far from a rotation is an error, not noise.
+    const Eigen::Matrix3d R_clean = NearestRotation(R);
+    if ((R_clean - R).norm() > 1e-2) throw DatasetError(file, "rotation part is not a rotation matrix", line_number);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = R_clean;
+    T.translation() = t;
+    return T;
+}
+
+}  // namespace
+
+Trajectory ReadKittiPoses(const std::filesystem::path& file) {
+    Trajectory trajectory;
+    ForEachDataLine(file, 12, "KITTI pose", [&](const std::vector<double>& v, std::size_t line_number) {
+        Eigen::Matrix3d R;
+        R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+        trajectory.poses.push_back(CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), file, line_number));
+    });
+    return trajectory;
+}
+
+Trajectory ReadTumPoses(const std::filesystem::path& file) {
+    Trajectory trajectory;
+    ForEachDataLine(file, 8, "TUM pose", [&](const std::vector<double>& v, std::size_t line_number) {
+        const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+        if (std::abs(q.norm() - 1.0) > 1e-2) throw DatasetError(file, "quaternion is not unit length", line_number);
+        if (!trajectory.timestamps.empty() && v[0] < trajectory.timestamps.back()) {
+            throw DatasetError(file, "timestamps go backwards", line_number);
+        }
+        trajectory.timestamps.push_back(v[0]);
+        trajectory.poses.push_back(
+            CleanPose(q.normalized().toRotationMatrix(), Eigen::Vector3d(v[1], v[2], v[3]), file, line_number));
+    });
+    return trajectory;
+}
+
+Trajectory ReadPoses(const std::filesystem::path& file) {
+    auto in = OpenText(file);
+    std::string line;
+    std::vector<double> values;
+    while (std::getline(in, line)) {
+        if (IsBlankOrComment(line)) continue;
+        ParseNumbers(line, values);
+        if (values.size() == 12) return ReadKittiPoses(file);
+        if (values.size() == 8) return ReadTumPoses(file);
+        throw DatasetError(file, "not a KITTI (12 numbers per line) or TUM (8 numbers per line) trajectory");
+    }
+    throw DatasetError(file, "trajectory file has no poses");
+}
+
+std::vector<double> ReadTimes(const std::filesystem::path& file) {
+    std::vector<double> times;
+    ForEachDataLine(file, 1, "time", [&](const std::vector<double>& v, std::size_t) { times.push_back(v[0]); });
+    return times;
+}
+
+void WriteKittiPoses(const std::filesystem::path& file, const Poses& poses) {
+    auto out = OpenOutput(file);
+    for (const auto& T : poses) {
+        const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 4; ++c) out << (r + c == 0 ? "" : " ") << M(r, c);
+        }
+        out << '\n';
+    }
+    if (!out) throw DatasetError(file, "write failed");
+}
+
+void WriteTumPoses(const std::filesystem::path& file, const Trajectory& trajectory) {
+    if (!trajectory.has_timestamps() && !trajectory.empty()) {
+        throw DatasetError(file, "TUM output needs one timestamp per pose");
+    }
+    auto out = OpenOutput(file);
+    for (std::size_t i = 0; i < trajectory.size(); ++i) {
+        const auto& T = trajectory.poses[i];
+        const Eigen::Quaterniond q(T.linear());
+        const Eigen::Vector3d t = T.translation();
+        out << trajectory.timestamps[i] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
+            << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+    }
+    if (!out) throw DatasetError(file, "write failed");
+}
+
+void WriteTimes(const std::filesystem::path& file, const std::vector<double>& timestamps) {
+    auto out = OpenOutput(file);
+    for (const double t : timestamps) out << t << '\n';
+    if (!out) throw DatasetError(file, "write failed");
+}
+
+std::vector<long> AssociateByTime(const std::vector<double>& trajectory_times, const std::vector<double>& query_times,
+                                  double max_dt) {
+    std::vector<long> indices(query_times.size(), -1);
+    for (std::size_t q = 0; q < query_times.size(); ++q) {
+        const auto it = std::lower_bound(trajectory_times.begin(), trajectory_times.end(), query_times[q]);
+        long best = -1;
+        double best_dt = max_dt;
+        for (auto candidate : {it, it == trajectory_times.begin() ? it : std::prev(it)}) {
+            if (candidate == trajectory_times.end()) continue;
+            const double dt = std::abs(*candidate - query_times[q]);
+            if (dt <= best_dt) {
+                best_dt = dt;
+                best = static_cast<long>(candidate - trajectory_times.begin());
+            }
+        }
+        indices[q] = best;
+    }
+    return indices;
+}
+
+}  // namespace revisit
