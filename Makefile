@@ -1,0 +1,35 @@
+# revisit: the commands a user runs. Each installs what it needs (Debian bookworm) and builds first.
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+DEMO_INPUT ?= /usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog
+
+.PHONY: all setup build test demo bench fuzz clean
+
+all: build
+
+setup:
+	@scripts/setup-debian.sh
+
+build: setup
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+## The whole test suite (GoogleTest through ctest).
+test: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+
+## The built-in demo: describes MRPT's sample 2D loop log (the full chain replaces this as it lands).
+demo: build
+	$(BUILD_DIR)/revisit info "$(DEMO_INPUT)"
+
+## Google Benchmark micro-benchmarks (not part of the tests).
+bench: build
+	cmake --build $(BUILD_DIR) --target revisit_benchmarks -j $(JOBS)
+	@for b in $(BUILD_DIR)/bench/bench_*; do echo "== $$b"; $$b; done
+
+## libFuzzer on every reader, FUZZ_SECONDS long (default 60).
+fuzz:
+	scripts/fuzz.sh $(or $(FUZZ_SECONDS),60)
+
+clean:
+	rm -rf $(BUILD_DIR) build-fuzz
