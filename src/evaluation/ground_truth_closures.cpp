@@ -1,0 +1,229 @@
+#include "evaluation/ground_truth_closures.hpp"
+
+#include "core/error.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <iomanip>
+#include <iterator>
+#include <istream>
+#include <ostream>
+#include <sstream>
+
+namespace revisit {
+namespace {
+
+using VoxelSet = std::vector<std::uint64_t>;  // sorted, unique voxel keys
+
+/// 21 bits per axis around an offset: +-1048576 voxels, +-524 km at 0.5 m.
+std::uint64_t VoxelKey(const Eigen::Vector3d& point, double voxel_size) {
+    constexpr std::int64_t kOffset = 1 << 20;
+    constexpr std::uint64_t kMask = (1ULL << 21) - 1;
+    const auto axis = [&](double value) {
+        return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / voxel_size)) + kOffset) & kMask;
+    };
+    return (axis(point.x()) << 42) | (axis(point.y()) << 21) | axis(point.z());
+}
+
+/// SplitMix64 finalizer: a well-mixed hash of the key, so "keep 1 in N" does not follow a spatial pattern.
+std::uint64_t Mix(std::uint64_t x) {
+    x ^= x >> 30;
+    x *= 0xBF58476D1CE4E5B9ULL;
+    x ^= x >> 27;
+    x *= 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+}
+
+/// Adds the voxels of one scan to a sorted, unique set, keeping its capacity tight (thousands of sets
+/// are alive at once on a long sequence).
+void AddVoxels(VoxelSet& voxels, const Eigen::Isometry3d& T_world_sensor,
+               const std::vector<Eigen::Vector3f>& points_in_sensor, const GtClosureConfig& config) {
+    VoxelSet scan_voxels;
+    scan_voxels.reserve(points_in_sensor.size() / std::max<std::size_t>(1, config.voxel_subsample) + 1);
+    for (const Eigen::Vector3f& p : points_in_sensor) {
+        const std::uint64_t key = VoxelKey(T_world_sensor * p.cast<double>(), config.voxel_size);
+        if (config.voxel_subsample > 1 && Mix(key) % config.voxel_subsample != 0) continue;
+        scan_voxels.push_back(key);
+    }
+    std::sort(scan_voxels.begin(), scan_voxels.end());
+    scan_voxels.erase(std::unique(scan_voxels.begin(), scan_voxels.end()), scan_voxels.end());
+    VoxelSet merged;
+    merged.reserve(voxels.size() + scan_voxels.size());
+    std::set_union(voxels.begin(), voxels.end(), scan_voxels.begin(), scan_voxels.end(), std::back_inserter(merged));
+    merged.shrink_to_fit();
+    voxels.swap(merged);
+}
+
+/// Eq. (5.1): |A n B| / min(|A|, |B|); 0 when either set is empty.
+double OverlapCoefficient(const VoxelSet& a, const VoxelSet& b) {
+    if (a.empty() || b.empty()) return 0.0;
+    std::size_t common = 0;
+    auto ia = a.begin();
+    auto ib = b.begin();
+    while (ia != a.end() && ib != b.end()) {
+        if (*ia < *ib) ++ia;
+        else if (*ib < *ia) ++ib;
+        else { ++common; ++ia; ++ib; }
+    }
+    return static_cast<double>(common) / static_cast<double>(std::min(a.size(), b.size()));
+}
+
+void CheckConfig(const GtClosureConfig& config) {
+    if (!(config.segment_length > 0.0)) throw ConfigError("ground truth: segment_length must be positive");
+    if (!(config.voxel_size > 0.0)) throw ConfigError("ground truth: voxel_size must be positive");
+    if (!(config.max_range > 0.0)) throw ConfigError("ground truth: max_range must be positive");
+    if (config.voxel_subsample == 0) throw ConfigError("ground truth: voxel_subsample must be >= 1");
+}
+
+}  // namespace
+
+std::vector<GtSegment> CutSegments(const Poses& T_world_sensor, double segment_length) {
+    const std::vector<double> travel = CumulativeDistance(T_world_sensor);
+    std::vector<GtSegment> segments;
+    for (std::size_t scan = 0; scan < travel.size(); ++scan) {
+        if (segments.empty() || travel[scan] - segments.back().start_travel >= segment_length)
+            segments.push_back({scan, scan, travel[scan]});
+        segments.back().last_scan = scan;
+    }
+    return segments;
+}
+
+GroundTruthBuilder::GroundTruthBuilder(Poses T_world_sensor, const GtClosureConfig& config)
+    : T_world_sensor_(std::move(T_world_sensor)), config_(config) {
+    CheckConfig(config_);
+    segments_ = CutSegments(T_world_sensor_, config_.segment_length);
+    const std::size_t num_segments = segments_.size();
+    segment_of_scan_.resize(T_world_sensor_.size());
+    for (std::size_t s = 0; s < num_segments; ++s)
+        for (std::size_t scan = segments_[s].first_scan; scan <= segments_[s].last_scan; ++scan) segment_of_scan_[scan] = s;
+
+    // Step 2 of METHOD.md section 7: candidates from the poses alone (cheap).
+    const double min_gap = config_.travel_gap_ranges * config_.max_range;
+    std::vector<std::vector<std::size_t>> later_of(num_segments);
+    tbb::parallel_for(std::size_t{0}, num_segments, [&](std::size_t i) {
+        const Eigen::Vector3d origin_i = T_world_sensor_[segments_[i].first_scan].translation();
+        for (std::size_t j = i + 1; j < num_segments; ++j) {
+            if (segments_[j].start_travel - segments_[i].start_travel < min_gap) continue;
+            const Eigen::Vector3d origin_j = T_world_sensor_[segments_[j].first_scan].translation();
+            if ((origin_j - origin_i).norm() < config_.max_range) later_of[i].push_back(j);
+        }
+    });
+    needed_.assign(num_segments, 0);
+    for (std::size_t i = 0; i < num_segments; ++i) {
+        for (const std::size_t j : later_of[i]) {
+            candidates_.push_back({i, j, 0.0});
+            needed_[i] = needed_[j] = 1;
+        }
+    }
+    voxels_.resize(num_segments);
+}
+
+bool GroundTruthBuilder::NeedsScan(std::size_t index) const {
+    return index < segment_of_scan_.size() && needed_[segment_of_scan_[index]];
+}
+
+void GroundTruthBuilder::AddScan(std::size_t index, const std::vector<Eigen::Vector3f>& points_in_sensor) {
+    if (!NeedsScan(index)) return;
+    AddVoxels(voxels_[segment_of_scan_[index]], T_world_sensor_[index], points_in_sensor, config_);
+}
+
+GtClosures GroundTruthBuilder::Finish() const {
+    GtClosures result;
+    result.segments = segments_;
+    result.num_candidate_pairs = candidates_.size();
+    // Step 3: the overlap coefficient of every candidate pair.
+    std::vector<GtSegmentPair> candidates = candidates_;
+    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t k) {
+        candidates[k].overlap = OverlapCoefficient(voxels_[candidates[k].earlier], voxels_[candidates[k].later]);
+    });
+    // Step 4: closing segment pairs, and every scan pair across them.
+    for (const auto& candidate : candidates) {
+        if (!(candidate.overlap > config_.min_overlap)) continue;
+        result.segment_pairs.push_back(candidate);
+        const GtSegment& a = segments_[candidate.earlier];
+        const GtSegment& b = segments_[candidate.later];
+        for (std::size_t s = a.first_scan; s <= a.last_scan; ++s)
+            for (std::size_t t = b.first_scan; t <= b.last_scan; ++t) result.scan_pairs.push_back(MakeScanPair(s, t));
+    }
+    std::sort(result.scan_pairs.begin(), result.scan_pairs.end());
+    result.scan_pairs.erase(std::unique(result.scan_pairs.begin(), result.scan_pairs.end()), result.scan_pairs.end());
+    return result;
+}
+
+GtClosures ComputeGroundTruthClosures(const Poses& T_world_sensor, const ScanPointsFn& scan_points,
+                                      const GtClosureConfig& config) {
+    GroundTruthBuilder builder(T_world_sensor, config);
+    const auto& segments = builder.segments();
+    // One task per segment: AddScan is never concurrent within a segment.
+    tbb::parallel_for(std::size_t{0}, segments.size(), [&](std::size_t s) {
+        for (std::size_t scan = segments[s].first_scan; scan <= segments[s].last_scan; ++scan)
+            if (builder.NeedsScan(scan)) builder.AddScan(scan, scan_points(scan));
+    });
+    return builder.Finish();
+}
+
+std::string GroundTruthCacheKey(const Poses& T_world_sensor, const GtClosureConfig& config, const std::string& salt) {
+    std::uint64_t hash = 0xCBF29CE484222325ULL;  // FNV-1a, 64 bit
+    const auto add_bytes = [&hash](const void* data, std::size_t size) {
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        for (std::size_t k = 0; k < size; ++k) {
+            hash ^= bytes[k];
+            hash *= 0x100000001B3ULL;
+        }
+    };
+    const std::uint64_t version = 1;  // bump when the algorithm's output changes
+    add_bytes(&version, sizeof(version));
+    const std::uint64_t count = T_world_sensor.size();
+    add_bytes(&count, sizeof(count));
+    for (const auto& T : T_world_sensor) add_bytes(T.matrix().data(), sizeof(double) * 16);
+    const double values[] = {config.segment_length, config.voxel_size, config.min_overlap, config.max_range,
+                             config.travel_gap_ranges, static_cast<double>(config.voxel_subsample)};
+    add_bytes(values, sizeof(values));
+    add_bytes(salt.data(), salt.size());
+    std::ostringstream text;
+    text << std::hex << std::setw(16) << std::setfill('0') << hash;
+    return text.str();
+}
+
+void WriteGroundTruthClosures(std::ostream& out, const GtClosures& closures, const std::string& cache_key) {
+    out << "revisit-gt-closures 1\nkey " << cache_key << "\ncandidates " << closures.num_candidate_pairs << '\n';
+    out << std::setprecision(17);
+    out << "segments " << closures.segments.size() << '\n';
+    for (const auto& s : closures.segments) out << s.first_scan << ' ' << s.last_scan << ' ' << s.start_travel << '\n';
+    out << "segment_pairs " << closures.segment_pairs.size() << '\n';
+    for (const auto& p : closures.segment_pairs) out << p.earlier << ' ' << p.later << ' ' << p.overlap << '\n';
+    out << "scan_pairs " << closures.scan_pairs.size() << '\n';
+    for (const auto& p : closures.scan_pairs) out << p.first << ' ' << p.second << '\n';
+    out << "end\n";
+}
+
+std::optional<GtClosures> ReadGroundTruthClosures(std::istream& in, const std::string& expected_key) {
+    constexpr std::size_t kMaxCount = 500'000'000;  // a corrupt count must not allocate without bound
+    std::string word, key;
+    int version = 0;
+    if (!(in >> word >> version) || word != "revisit-gt-closures" || version != 1) return std::nullopt;
+    if (!(in >> word >> key) || word != "key" || key != expected_key) return std::nullopt;
+    GtClosures closures;
+    std::size_t count = 0;
+    if (!(in >> word >> closures.num_candidate_pairs) || word != "candidates") return std::nullopt;
+    if (!(in >> word >> count) || word != "segments" || count > kMaxCount) return std::nullopt;
+    closures.segments.resize(count);
+    for (auto& s : closures.segments)
+        if (!(in >> s.first_scan >> s.last_scan >> s.start_travel)) return std::nullopt;
+    if (!(in >> word >> count) || word != "segment_pairs" || count > kMaxCount) return std::nullopt;
+    closures.segment_pairs.resize(count);
+    for (auto& p : closures.segment_pairs)
+        if (!(in >> p.earlier >> p.later >> p.overlap)) return std::nullopt;
+    if (!(in >> word >> count) || word != "scan_pairs" || count > kMaxCount) return std::nullopt;
+    closures.scan_pairs.resize(count);
+    for (auto& p : closures.scan_pairs)
+        if (!(in >> p.first >> p.second)) return std::nullopt;
+    if (!(in >> word) || word != "end") return std::nullopt;  // a truncated file is not a cache
+    return closures;
+}
+
+}  // namespace revisit

@@ -1,0 +1,94 @@
+#pragma once
+/// Ground-truth loop closures from reference poses and scans by volumetric overlap
+/// (METHOD.md section 7; thesis section 5.1, Eq. (5.1), the Szymkiewicz-Simpson overlap coefficient).
+#include "core/trajectory.hpp"
+#include "evaluation/scan_pair.hpp"
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace revisit {
+
+struct GtClosureConfig {
+    double segment_length = 2.0;     ///< [m] of travel per segment (key locations every 2 m)
+    double voxel_size = 0.5;         ///< [m] voxel grid of each segment's accumulated scans
+    double min_overlap = 0.5;        ///< a segment pair is a closure when overlap > this [0..1]
+    double max_range = 100.0;        ///< [m] sensor range: segments whose first poses are farther apart are skipped
+    double travel_gap_ranges = 2.0;  ///< later segment starts >= this * max_range of travel after the earlier one
+    std::size_t voxel_subsample = 1; ///< keep 1 voxel in N, chosen by a hash of the voxel (the same voxels in
+                                     ///< every segment, so the overlap stays an unbiased estimate); 1 = exact
+};
+
+/// A run of consecutive scans covering `segment_length` of travel.
+struct GtSegment {
+    std::size_t first_scan = 0;
+    std::size_t last_scan = 0;  ///< inclusive
+    double start_travel = 0.0;  ///< [m] travelled distance at the first scan
+};
+
+struct GtSegmentPair {
+    std::size_t earlier = 0;  ///< segment index
+    std::size_t later = 0;    ///< segment index
+    double overlap = 0.0;     ///< |A n B| / min(|A|, |B|) of the two voxel sets
+};
+
+struct GtClosures {
+    std::vector<GtSegment> segments;
+    std::vector<GtSegmentPair> segment_pairs;  ///< closures only (overlap > min_overlap), sorted
+    std::vector<ScanPair> scan_pairs;          ///< every scan pair across closing segments, sorted, unique
+    std::size_t num_candidate_pairs = 0;       ///< segment pairs that passed the travel and distance limits
+};
+
+/// Points of scan `index` in its sensor frame. Called concurrently from TBB workers: must be thread-safe.
+using ScanPointsFn = std::function<std::vector<Eigen::Vector3f>(std::size_t index)>;
+
+/// Segments of `segment_length` travel; a new one starts at the first scan at least that far from the
+/// current segment's first scan (travel along the path). Stationary scans stay in the current segment.
+std::vector<GtSegment> CutSegments(const Poses& T_world_sensor, double segment_length);
+
+/// The ground truth of a sequence; `T_world_sensor` holds one reference pose per scan. Segments are
+/// voxelized in parallel (TBB), each by one task.
+GtClosures ComputeGroundTruthClosures(const Poses& T_world_sensor, const ScanPointsFn& scan_points,
+                                      const GtClosureConfig& config);
+
+/// The same computation for scans that arrive one by one (a reader that streams, no random access):
+/// the candidates come from the poses at construction, so only scans of segments that take part in a
+/// candidate pair are needed, and only their voxel sets are kept.
+class GroundTruthBuilder {
+  public:
+    GroundTruthBuilder(Poses T_world_sensor, const GtClosureConfig& config);
+    /// False for scans whose segment is in no candidate pair: skip reading them.
+    bool NeedsScan(std::size_t index) const;
+    /// Adds a scan's points (sensor frame). Safe to call concurrently for scans of different segments.
+    void AddScan(std::size_t index, const std::vector<Eigen::Vector3f>& points_in_sensor);
+    /// Overlaps of the candidate pairs (parallel) and the closures. Scans never added count as empty.
+    GtClosures Finish() const;
+    const std::vector<GtSegment>& segments() const { return segments_; }
+
+  private:
+    Poses T_world_sensor_;
+    GtClosureConfig config_;
+    std::vector<GtSegment> segments_;
+    std::vector<std::size_t> segment_of_scan_;
+    std::vector<GtSegmentPair> candidates_;
+    std::vector<char> needed_;                         // per segment
+    std::vector<std::vector<std::uint64_t>> voxels_;   // per segment: sorted, unique voxel keys
+};
+
+/// 16 hex digits identifying the inputs: every pose bit, every config field and `salt` (e.g. the
+/// dataset's path and scan count: the scans themselves are not hashed). Equal keys: reuse the cache.
+std::string GroundTruthCacheKey(const Poses& T_world_sensor, const GtClosureConfig& config,
+                                const std::string& salt = "");
+
+/// Plain-text cache: a header with the key, then segments, segment pairs and scan pairs.
+void WriteGroundTruthClosures(std::ostream& out, const GtClosures& closures, const std::string& cache_key);
+/// The cached closures, or nullopt when the key differs or the text is not a complete cache (recompute).
+std::optional<GtClosures> ReadGroundTruthClosures(std::istream& in, const std::string& expected_key);
+
+}  // namespace revisit

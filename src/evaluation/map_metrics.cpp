@@ -1,0 +1,96 @@
+#include "evaluation/map_metrics.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace revisit {
+namespace {
+
+bool Inside(std::size_t scan, std::size_t first, std::size_t last) { return scan >= first && scan <= last; }
+
+std::size_t CountPairsBetween(const MapClosureForEval& c, const std::vector<ScanPair>& gt_scan_pairs) {
+    std::size_t count = 0;
+    for (const auto& pair : gt_scan_pairs) {
+        const bool forward = Inside(pair.first, c.ref_first_scan, c.ref_last_scan) &&
+                             Inside(pair.second, c.query_first_scan, c.query_last_scan);
+        const bool backward = Inside(pair.second, c.ref_first_scan, c.ref_last_scan) &&
+                              Inside(pair.first, c.query_first_scan, c.query_last_scan);
+        if (forward || backward) ++count;
+    }
+    return count;
+}
+
+/// Index of the map holding `scan`, or maps.size() when none does.
+std::size_t MapOfScan(const std::vector<MapRange>& maps, std::size_t scan) {
+    const auto it = std::upper_bound(maps.begin(), maps.end(), scan,
+                                     [](std::size_t s, const MapRange& m) { return s < m.first_scan; });
+    if (it == maps.begin()) return maps.size();
+    const std::size_t index = static_cast<std::size_t>(it - maps.begin()) - 1;
+    return scan <= maps[index].last_scan ? index : maps.size();
+}
+
+}  // namespace
+
+MapRecall ComputeMapRecall(const std::vector<MapRange>& maps, const std::vector<MapClosureForEval>& closures,
+                           const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
+    std::vector<char> revisits(maps.size(), 0), found(maps.size(), 0);
+    for (const auto& pair : gt_scan_pairs) {
+        const std::size_t a = MapOfScan(maps, std::min(pair.first, pair.second));
+        const std::size_t b = MapOfScan(maps, std::max(pair.first, pair.second));
+        if (a < maps.size() && b < maps.size() && a != b) revisits[std::max(a, b)] = 1;
+    }
+    for (const auto& closure : closures) {
+        if (closure.inliers < config.min_inliers) continue;
+        const std::size_t query = MapOfScan(maps, closure.query_first_scan);
+        if (query < maps.size() && CountPairsBetween(closure, gt_scan_pairs) > 0) found[query] = 1;
+    }
+    MapRecall recall;
+    for (std::size_t m = 0; m < maps.size(); ++m) {
+        recall.maps_with_revisit += revisits[m] ? 1 : 0;
+        recall.maps_found_right += revisits[m] && found[m] ? 1 : 0;
+    }
+    if (recall.maps_with_revisit > 0) recall.recall = double(recall.maps_found_right) / double(recall.maps_with_revisit);
+    return recall;
+}
+
+double YawOf(const Eigen::Isometry3d& T) {
+    const Eigen::Vector3d x_axis = T.linear().col(0);
+    return std::atan2(x_axis.y(), x_axis.x());
+}
+
+MapMetrics EvaluateMapClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_world_sensor,
+                               const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
+    constexpr double kDegPerRad = 180.0 / M_PI;
+    MapMetrics metrics;
+    std::vector<double> translation_errors, yaw_errors;
+    for (std::size_t k = 0; k < closures.size(); ++k) {
+        const MapClosureForEval& c = closures[k];
+        if (c.inliers < config.min_inliers) continue;
+        if (c.query_first_scan >= T_world_sensor.size() || c.ref_first_scan >= T_world_sensor.size())
+            throw ConfigError("map closure " + std::to_string(k) + " names a scan without a reference pose");
+        MapClosureAssessment assessment;
+        assessment.closure = k;
+        assessment.gt_scan_pairs = CountPairsBetween(c, gt_scan_pairs);
+        assessment.right_map = assessment.gt_scan_pairs > 0;
+        const Eigen::Isometry3d T_gt_query_ref =
+            T_world_sensor[c.query_first_scan].inverse() * T_world_sensor[c.ref_first_scan];
+        const Eigen::Isometry3d error = T_gt_query_ref.inverse() * c.T_query_ref;
+        assessment.translation_error = error.translation().head<2>().norm();
+        assessment.yaw_error_deg = std::abs(YawOf(error)) * kDegPerRad;
+        if (assessment.right_map) {
+            ++metrics.num_right_maps;
+            translation_errors.push_back(assessment.translation_error);
+            yaw_errors.push_back(assessment.yaw_error_deg);
+        }
+        metrics.closures.push_back(assessment);
+    }
+    if (!metrics.closures.empty())
+        metrics.fraction_right = double(metrics.num_right_maps) / double(metrics.closures.size());
+    metrics.translation_error = ComputeStatistics(translation_errors);
+    metrics.yaw_error_deg = ComputeStatistics(yaw_errors);
+    return metrics;
+}
+
+}  // namespace revisit

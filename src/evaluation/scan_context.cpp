@@ -1,0 +1,150 @@
+#include "evaluation/scan_context.hpp"
+
+#include "core/error.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace revisit {
+namespace {
+
+/// The 1-based bin of value / max in count bins, clamped to [1, count] (SCManager::makeScancontext).
+int BinOf(float value, float max, int count) {
+    const int bin = static_cast<int>(std::ceil(value / max * static_cast<float>(count)));
+    return std::max(1, std::min(count, bin));
+}
+
+/// Column c of `descriptor` lands at (c + shift) mod cols (SCManager's circshift).
+float ShiftedColumnEntry(const Eigen::MatrixXf& bins, int row, int column, int shift) {
+    const int cols = static_cast<int>(bins.cols());
+    return bins(row, ((column - shift) % cols + cols) % cols);
+}
+
+/// 1 - mean cosine similarity over columns that are non-empty in both (SCManager::distDirectSC).
+double DirectDistance(const Eigen::MatrixXf& query, const Eigen::MatrixXf& candidate, int shift) {
+    double sum_similarity = 0.0;
+    int num_columns = 0;
+    for (int c = 0; c < query.cols(); ++c) {
+        double dot = 0.0, norm_q = 0.0, norm_c = 0.0;
+        for (int r = 0; r < query.rows(); ++r) {
+            const double q = query(r, c);
+            const double v = ShiftedColumnEntry(candidate, r, c, shift);
+            dot += q * v;
+            norm_q += q * q;
+            norm_c += v * v;
+        }
+        if (norm_q == 0.0 || norm_c == 0.0) continue;
+        sum_similarity += dot / std::sqrt(norm_q * norm_c);
+        ++num_columns;
+    }
+    return num_columns == 0 ? 1.0 : 1.0 - sum_similarity / num_columns;
+}
+
+/// The shift of the candidate's sector key closest (L2) to the query's (SCManager::fastAlignUsingVkey).
+int CoarseShift(const Eigen::VectorXf& query_key, const Eigen::VectorXf& candidate_key) {
+    const int n = static_cast<int>(query_key.size());
+    int best_shift = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (int shift = 0; shift < n; ++shift) {
+        double squared = 0.0;
+        for (int c = 0; c < n; ++c) {
+            const double d = query_key(c) - candidate_key(((c - shift) % n + n) % n);
+            squared += d * d;
+        }
+        if (squared < best) {
+            best = squared;
+            best_shift = shift;
+        }
+    }
+    return best_shift;
+}
+
+void CheckConfig(const ScanContextConfig& config) {
+    if (config.num_rings < 1 || config.num_sectors < 1) throw ConfigError("scan context: rings and sectors must be >= 1");
+    if (!(config.max_radius > 0.0)) throw ConfigError("scan context: max_radius must be positive");
+    if (config.rebuild_period == 0) throw ConfigError("scan context: rebuild_period must be >= 1");
+}
+
+}  // namespace
+
+ScanContextDescriptor MakeScanContext(const std::vector<Eigen::Vector3f>& points_in_sensor,
+                                      const ScanContextConfig& config) {
+    CheckConfig(config);
+    constexpr float kNoPoint = -1000.0f;  // SCManager's marker for empty bins, reset to 0 below
+    Eigen::MatrixXf bins = Eigen::MatrixXf::Constant(config.num_rings, config.num_sectors, kNoPoint);
+    // Single precision throughout, as SCManager (float points, float xy2theta).
+    const float max_radius = static_cast<float>(config.max_radius);
+    const float sensor_height = static_cast<float>(config.sensor_height);
+    constexpr float kDegPerRad = static_cast<float>(180.0 / M_PI);
+    for (const Eigen::Vector3f& p : points_in_sensor) {
+        const float range = std::sqrt(p.x() * p.x() + p.y() * p.y());
+        if (range > max_radius) continue;
+        float azimuth_deg = std::atan2(p.y(), p.x()) * kDegPerRad;
+        if (azimuth_deg < 0.0f) azimuth_deg += 360.0f;
+        const int ring = BinOf(range, max_radius, config.num_rings) - 1;
+        const int sector = BinOf(azimuth_deg, 360.0f, config.num_sectors) - 1;
+        bins(ring, sector) = std::max(bins(ring, sector), p.z() + sensor_height);
+    }
+    bins = (bins.array() == kNoPoint).select(0.0f, bins);
+    ScanContextDescriptor descriptor;
+    descriptor.ring_key = bins.rowwise().mean();
+    descriptor.sector_key = bins.colwise().mean().transpose();
+    descriptor.bins = std::move(bins);
+    return descriptor;
+}
+
+ScanContextMatch ScanContextDistance(const ScanContextDescriptor& query, const ScanContextDescriptor& candidate,
+                                     const ScanContextConfig& config) {
+    const int cols = static_cast<int>(query.bins.cols());
+    if (candidate.bins.rows() != query.bins.rows() || candidate.bins.cols() != cols)
+        throw ConfigError("scan context: descriptors of different sizes");
+    const int coarse = CoarseShift(query.sector_key, candidate.sector_key);
+    const int radius = static_cast<int>(std::round(0.5 * config.search_ratio * cols));
+    ScanContextMatch best;
+    best.distance = std::numeric_limits<double>::infinity();
+    for (int offset = -radius; offset <= radius; ++offset) {
+        const int shift = ((coarse + offset) % cols + cols) % cols;
+        const double distance = DirectDistance(query.bins, candidate.bins, shift);
+        if (distance < best.distance) best = {distance, shift};
+    }
+    return best;
+}
+
+std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContextDescriptor>& descriptors,
+                                                    const ScanContextConfig& config) {
+    CheckConfig(config);
+    const std::size_t n = descriptors.size();
+    std::vector<std::vector<ScanContextCandidate>> per_query(n);
+    tbb::parallel_for(config.exclude_recent, std::max(n, config.exclude_recent), [&](std::size_t q) {
+        // SCManager counts queries from the first that passes the size check and rebuilds every period.
+        const std::size_t counter = q - config.exclude_recent;
+        const std::size_t rebuilt_at = config.exclude_recent + (counter / config.rebuild_period) * config.rebuild_period;
+        const std::size_t searchable = rebuilt_at + 1 - config.exclude_recent;
+        std::vector<std::pair<double, std::size_t>> by_key(searchable);
+        for (std::size_t s = 0; s < searchable; ++s)
+            by_key[s] = {(descriptors[q].ring_key - descriptors[s].ring_key).squaredNorm(), s};
+        const std::size_t k = std::min(config.num_candidates, searchable);
+        std::partial_sort(by_key.begin(), by_key.begin() + static_cast<std::ptrdiff_t>(k), by_key.end());
+        for (std::size_t c = 0; c < k; ++c) {
+            const std::size_t s = by_key[c].second;
+            const ScanContextMatch match = ScanContextDistance(descriptors[q], descriptors[s], config);
+            per_query[q].push_back({q, s, match.distance, match.shift});
+        }
+    });
+    std::vector<ScanContextCandidate> all;
+    for (auto& candidates : per_query) all.insert(all.end(), candidates.begin(), candidates.end());
+    return all;
+}
+
+std::vector<ScoredPair> ScanContextPairs(const std::vector<ScanContextCandidate>& candidates) {
+    std::vector<ScoredPair> pairs;
+    pairs.reserve(candidates.size());
+    for (const auto& c : candidates) pairs.push_back({MakeScanPair(c.query, c.candidate), c.distance});
+    return pairs;
+}
+
+}  // namespace revisit
