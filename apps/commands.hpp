@@ -11,6 +11,13 @@ using Action = std::function<int()>;
 
 void AddInfoCommand(CLI::App& root, Action& action);
 void AddConvertCommand(CLI::App& root, Action& action);
+void AddSimulateCommand(CLI::App& root, Action& action);
+void AddRunCommand(CLI::App& root, Action& action);
+void AddEvalCommand(CLI::App& root, Action& action);
+void AddReportCommands(CLI::App& root, Action& action);
+void AddOdometryCommand(CLI::App& root, Action& action);
+void AddDemoCommand(CLI::App& root, Action& action);
+void AddConfigCommand(CLI::App& root, Action& action);
 
 /// A progress line on stderr when it is a terminal, rewritten in place; silent otherwise.
 void ShowProgress(const std::string& text);

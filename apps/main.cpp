@@ -12,8 +12,15 @@ int main(int argc, char** argv) {
     root.require_subcommand(1);
     root.set_version_flag("--version", "revisit 0.1.0");
     revisit::app::Action action;
+    revisit::app::AddDemoCommand(root, action);
+    revisit::app::AddRunCommand(root, action);
     revisit::app::AddInfoCommand(root, action);
+    revisit::app::AddSimulateCommand(root, action);
+    revisit::app::AddOdometryCommand(root, action);
+    revisit::app::AddEvalCommand(root, action);
+    revisit::app::AddReportCommands(root, action);
     revisit::app::AddConvertCommand(root, action);
+    revisit::app::AddConfigCommand(root, action);
     try {
         root.parse(argc, argv);
         return action ? action() : 0;

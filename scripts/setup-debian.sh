@@ -9,6 +9,7 @@ packages=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   libmrpt-maps-dev libmrpt-opengl-dev libmrpt-img-dev mrpt-common libosmesa6-dev
   libgtest-dev libbenchmark-dev
+  chromium
 )
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang libclang-rt-14-dev)

@@ -28,7 +28,7 @@ namespace {
 class RawlogReader final : public Reader {
   public:
     RawlogReader(const std::filesystem::path& file, const ReaderOptions& options)
-        : file_(file), label_filter_(options.sensor_label) {
+        : file_(file), options_(options), label_filter_(options.sensor_label) {
         info_.format = "rawlog";
         info_.path = file;
         if (!stream_.open(file.string())) throw DatasetError(file, "cannot open rawlog");
@@ -106,7 +106,7 @@ class RawlogReader final : public Reader {
             (pose->sensorLabel == "GROUND_TRUTH" ? T_reference_ : T_odom_) = ToIsometry(pose->pose.mean);
             return;
         }
-        auto scan = ScanFromObservation(*obs, stats_);
+        auto scan = ScanFromObservation(*obs, stats_, options_);
         if (!scan) {
             stats_.skipped_classes[obs->GetRuntimeClass()->className]++;
             return;
@@ -122,6 +122,7 @@ class RawlogReader final : public Reader {
     }
 
     std::filesystem::path file_;
+    ReaderOptions options_;
     std::string label_filter_;
     DatasetInfo info_;
     mrpt::io::CFileGZInputStream stream_;

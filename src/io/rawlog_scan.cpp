@@ -60,7 +60,7 @@ Scan FromPointsMap(const mrpt::maps::CPointsMap& map, ReadStats& stats) {
         stats);
 }
 
-std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stats) {
+std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stats, const ReaderOptions& options) {
     using namespace mrpt::obs;
     if (const auto* pc = dynamic_cast<const CObservationPointCloud*>(&obs)) {
         if (!pc->pointcloud) return Scan{};
@@ -90,10 +90,15 @@ std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stat
     }
     if (const auto* laser = dynamic_cast<const CObservation2DRangeScan*>(&obs)) {
         Scan scan;
-        for (std::size_t i = 0; i < laser->getScanSize(); ++i) {
+        const std::size_t n = laser->getScanSize();
+        const double aperture = options.laser_aperture > 0.0 ? options.laser_aperture : laser->aperture;
+        const double step = n > 1 ? aperture / static_cast<double>(n - 1) : 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
             if (!laser->getScanRangeValidity(i)) continue;
             const float range = laser->getScanRange(i);
-            const float angle = laser->getScanAngle(i);
+            // As CObservation2DRangeScan::getScanAngle, with the aperture possibly overridden.
+            const double from_right = -aperture / 2.0 + step * static_cast<double>(i);
+            const float angle = static_cast<float>(laser->rightToLeft ? from_right : -from_right);
             if (!std::isfinite(range)) {
                 stats.non_finite_points++;
                 continue;
@@ -110,8 +115,8 @@ std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stat
 
 }  // namespace
 
-std::optional<Scan> ScanFromObservation(const mrpt::obs::CObservation& obs, ReadStats& stats) {
-    auto scan = PointsOf(obs, stats);
+std::optional<Scan> ScanFromObservation(const mrpt::obs::CObservation& obs, ReadStats& stats, const ReaderOptions& options) {
+    auto scan = PointsOf(obs, stats, options);
     if (!scan) return std::nullopt;
     mrpt::poses::CPose3D sensor_pose;
     obs.getSensorPose(sensor_pose);

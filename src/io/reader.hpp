@@ -15,6 +15,10 @@ struct ReaderOptions {
     std::string sensor_label;                ///< rawlogs: keep only this sensor label (empty: all)
     bool kitti_vertical_correction = false;  ///< rotate KITTI points by 0.205 deg about the axis normal to their azimuth
     std::filesystem::path poses_file;        ///< reference poses (KITTI 3x4 or TUM) overriding the dataset's own
+    /// 2D laser scans: field of view [rad] to use instead of the file's `aperture` (0: the file's).
+    /// Some converted logs store a wrong aperture, e.g. the radish intel.rawlog says 90 deg for its
+    /// 180-beam, 180-degree SICK scans, which bends every scan.
+    double laser_aperture = 0.0;
 };
 
 struct DatasetInfo {

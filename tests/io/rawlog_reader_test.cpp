@@ -155,3 +155,25 @@ TEST(RawlogWriter, PlanarRangeScansRoundTrip) {
 
 }  // namespace
 }  // namespace revisit
+
+namespace revisit {
+namespace {
+TEST(RawlogReader, LaserApertureOverrideSpreadsTheBeams) {
+    const auto file = test::SharedData("radish/intel.rawlog");
+    REVISIT_REQUIRE_DATA(file);
+    const auto angular_span = [&](double aperture) {
+        ReaderOptions options;
+        options.laser_aperture = aperture;
+        auto scan = OpenDataset(file, options)->Next();
+        double lo = 10, hi = -10;
+        for (const auto& p : scan->points) {
+            lo = std::min(lo, std::atan2(static_cast<double>(p.y()), static_cast<double>(p.x())));
+            hi = std::max(hi, std::atan2(static_cast<double>(p.y()), static_cast<double>(p.x())));
+        }
+        return hi - lo;
+    };
+    EXPECT_LE(angular_span(0.0), M_PI / 2 + 1e-3);  // the file's (wrong) 90 degrees
+    EXPECT_GT(angular_span(M_PI), 0.9 * M_PI);      // the SICK's real 180 degrees
+}
+}  // namespace
+}  // namespace revisit

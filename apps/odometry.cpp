@@ -1,0 +1,71 @@
+/// `revisit odometry DATASET --out DIR`: our LiDAR odometry alone, poses in KITTI and TUM formats.
+#include <chrono>
+#include <iostream>
+
+#include "commands.hpp"
+#include "io/output_folder.hpp"
+#include "io/reader.hpp"
+#include "io/trajectory_io.hpp"
+#include "odometry/lidar_odometry.hpp"
+#include "pipeline/interrupt.hpp"
+#include "pipeline/progress.hpp"
+#include "run_options.hpp"
+
+namespace revisit::app {
+namespace {
+struct OdometryOptions {
+    std::string dataset, out;
+    ConfigOptions config;
+    bool force = false, quiet = false;
+};
+
+int RunOdometry(const OdometryOptions& o) {
+    const PipelineConfig config = ResolveConfig(o.config);
+    const auto threads = LimitThreads(o.config.threads);
+    ReaderOptions reader_options;
+    reader_options.sensor_label = config.input.sensor_label;
+    reader_options.kitti_vertical_correction = config.input.kitti_vertical_correction;
+    auto reader = OpenDataset(o.dataset, reader_options);
+    PrepareOutputFolder(o.out, o.force);
+    LidarOdometry odometry(config.odometry);
+    Trajectory trajectory;
+    Progress progress(std::cerr, Progress::DetectMode(o.quiet), reader->Info().num_scans);
+    InstallInterruptHandler();
+    const auto start = std::chrono::steady_clock::now();
+    while (auto scan = reader->Next()) {
+        if (InterruptRequested()) break;
+        trajectory.poses.push_back(odometry.RegisterScan(*scan));
+        trajectory.timestamps.push_back(scan->timestamp);
+        progress.Update(trajectory.size());
+    }
+    progress.Finish(trajectory.size());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::filesystem::path out(o.out);
+    WriteKittiPoses(out / "poses_kitti.txt", trajectory.poses);
+    WriteTumPoses(out / "poses_tum.txt", trajectory);
+    std::cout << "odometry: " << trajectory.size() << " scans in " << seconds << " s ("
+              << (seconds > 0 ? trajectory.size() / seconds : 0.0) << " scans/s), " << PathLength(trajectory.poses)
+              << " m; " << odometry.NumDegenerateFrames() << " scans kept the motion prediction\n"
+              << "wrote " << (out / "poses_kitti.txt").string() << " and " << (out / "poses_tum.txt").string() << '\n';
+    return InterruptRequested() ? 130 : 0;
+}
+}  // namespace
+
+void AddOdometryCommand(CLI::App& root, Action& action) {
+    auto o = std::make_shared<OdometryOptions>();
+    auto* cmd = root.add_subcommand("odometry", "Run the LiDAR odometry alone and write its poses");
+    cmd->footer(
+        "KISS-ICP-class scan-to-map ICP (METHOD.md section 1). Writes OUT/poses_kitti.txt (3x4 per line) and\n"
+        "OUT/poses_tum.txt (t x y z qx qy qz qw), poses of the sensor in the first scan's frame.\n"
+        "Examples:\n"
+        "  revisit odometry ~/kitti/sequences/00 --config kitti --out odo00\n"
+        "  revisit odometry intel.rawlog --config indoor2d --out odo_intel --threads 1");
+    cmd->add_option("dataset", o->dataset, "KITTI folder, .pcd/.ply folder, or .rawlog[.gz]")->required();
+    cmd->add_option("--out", o->out, "output folder")->required();
+    AddConfigOptions(*cmd, o->config);
+    cmd->add_flag("--force", o->force, "write into an existing non-empty folder");
+    cmd->add_flag("--quiet", o->quiet, "no progress output");
+    cmd->callback([o, &action] { action = [o] { return RunOdometry(*o); }; });
+}
+
+}  // namespace revisit::app

@@ -1,0 +1,73 @@
+/// `revisit run DATASET`: the whole chain into a run folder, then evaluation and the report.
+#include <iostream>
+
+#include "commands.hpp"
+#include "pipeline/evaluate.hpp"
+#include "pipeline/pipeline.hpp"
+#include "pipeline/report_builder.hpp"
+#include "pipeline/summary.hpp"
+#include "run_options.hpp"
+
+namespace revisit::app {
+namespace fs = std::filesystem;
+namespace {
+
+struct RunCommandOptions {
+    RunOptions run;
+    ConfigOptions config;
+    std::string poses = "odometry";
+    std::string out;
+    std::size_t to = 0;
+    bool has_to = false;
+};
+
+int RunRun(RunCommandOptions& o) {
+    const auto config = ResolveConfig(o.config);
+    const auto threads = LimitThreads(o.config.threads);
+    if (o.poses == "odometry") o.run.poses = PoseSource::kOdometry;
+    else if (o.poses == "dataset") o.run.poses = PoseSource::kDataset;
+    else {
+        o.run.poses = PoseSource::kFile;
+        o.run.poses_file = o.poses;
+    }
+    if (o.has_to) o.run.to = o.to;
+    const bool default_out = o.out.empty();
+    o.run.out = default_out ? RunFolder::DefaultPath("reports", o.run.dataset) : fs::path(o.out);
+    if (!o.run.quiet) std::cerr << "revisit: " << o.run.dataset.string() << " -> " << o.run.out.string() << '\n';
+    const RunState state = RunPipeline(o.run, config, std::cerr);
+    if (default_out) RunFolder::UpdateLatestLink(o.run.out);
+    const RunFolder run(o.run.out);
+    const auto evaluation = EvaluateRun(run, state, o.run, config, std::cerr);
+    if (config.output.write_report) WriteRunReport(run, std::cerr);
+    PrintRunSummary(std::cout, state, evaluation);
+    std::cout << "\nrun folder: " << o.run.out.string() << '\n';
+    if (config.output.write_report) std::cout << "report:     " << run.report_index().string() << '\n';
+    return state.complete ? 0 : 130;
+}
+}  // namespace
+
+void AddRunCommand(CLI::App& root, Action& action) {
+    auto o = std::make_shared<RunCommandOptions>();
+    auto* cmd = root.add_subcommand("run", "Find loop closures and correct the trajectory of a dataset");
+    cmd->footer(
+        "Streams the dataset: odometry, local maps, density images, ORB, Hamming tree, RANSAC, 3D refinement\n"
+        "and the pose graph, as scans arrive. Writes a run folder (see README: Output files) and, when the\n"
+        "dataset has reference poses or --gt is given, precision/recall/F1 and APE. Ctrl-C stops cleanly\n"
+        "and writes what was computed (run.json: complete = false).\n"
+        "Examples:\n"
+        "  revisit run ~/kitti/sequences/00 --config kitti\n"
+        "  revisit run intel.rawlog --config indoor2d --out runs/intel\n"
+        "  revisit run seq/ --poses dataset --set density.resolution=0.2 --threads 2");
+    cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, or .rawlog[.gz]")->required();
+    AddConfigOptions(*cmd, o->config);
+    cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
+    cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its poses) or a KITTI/TUM FILE")->capture_default_str();
+    cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI or TUM) for evaluation");
+    cmd->add_option("--from", o->run.from, "first scan index to use");
+    cmd->add_option("--to", o->to, "last scan index to use (inclusive)")->each([o](const std::string&) { o->has_to = true; });
+    cmd->add_flag("--force", o->run.force, "write into an existing non-empty run folder");
+    cmd->add_flag("--quiet", o->run.quiet, "no progress output");
+    cmd->callback([o, &action] { action = [o] { return RunRun(*o); }; });
+}
+
+}  // namespace revisit::app

@@ -1,0 +1,154 @@
+#include "odometry/lidar_odometry.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "odometry/preprocess.hpp"
+#include "odometry/registration.hpp"
+
+namespace revisit {
+namespace {
+
+const OdometryConfig& Validated(const OdometryConfig& config) {
+    auto require = [](bool ok, const char* what) {
+        if (!ok) throw ConfigError(std::string("odometry: ") + what);
+    };
+    require(config.max_range > 0.0 && std::isfinite(config.max_range), "max_range must be positive");
+    require(config.min_range >= 0.0 && config.min_range < config.max_range, "min_range must be in [0, max_range)");
+    require(config.voxel_size >= 0.0, "voxel_size must be >= 0 (0: max_range / 100)");
+    // The map reserves max_points_per_voxel slots per voxel (contiguous search): bound the memory.
+    require(config.max_points_per_voxel >= 1 && config.max_points_per_voxel <= 100,
+            "max_points_per_voxel must be in [1, 100]");
+    require(config.initial_threshold > 0.0, "initial_threshold must be positive");
+    require(config.min_motion_th >= 0.0, "min_motion_th must be >= 0");
+    require(config.max_iterations >= 1, "max_iterations must be >= 1");
+    require(config.convergence > 0.0, "convergence must be positive");
+    require(config.max_correction > 0.0, "max_correction must be positive");
+    require(config.degenerate_thickness >= 0.0, "degenerate_thickness must be >= 0");
+    return config;
+}
+
+/// Products of poses slowly lose orthonormality, and T^-1 (which assumes it) then amplifies the
+/// loss frame after frame: re-project the rotation every frame.
+Eigen::Isometry3d Orthonormalized(const Eigen::Isometry3d& T) {
+    Eigen::Isometry3d clean = T;
+    clean.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
+    return clean;
+}
+
+std::string Describe(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+}  // namespace
+
+LidarOdometry::LidarOdometry(const OdometryConfig& config)
+    : config_(Validated(config)),
+      map_(config.VoxelSize(), config.max_points_per_voxel),
+      threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {}
+
+Eigen::Isometry3d LidarOdometry::PredictMotion(const Scan& scan) {
+    if (config_.use_prior && scan.T_odom_sensor && last_T_odom_sensor_) {
+        stats_.prior_used = true;
+        return last_T_odom_sensor_->inverse() * *scan.T_odom_sensor;
+    }
+    return last_delta_;
+}
+
+std::string LidarOdometry::DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const {
+    const std::size_t min_points = static_cast<std::size_t>(std::max(config_.min_correspondences, 3));
+    if (points.size() < min_points) {
+        return "only " + std::to_string(points.size()) + " points left in [" + Describe(config_.min_range) + ", " +
+               Describe(config_.max_range) + "] m after downsampling";
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p;
+    mean /= static_cast<double>(points.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) covariance.noalias() += (p - mean) * (p - mean).transpose();
+    covariance /= static_cast<double>(points.size());
+    // Planar scans constrain x, y, yaw unless they are collinear; 3D scans need more than a plane.
+    const double smallest = config_.planar
+                                ? Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>()).eigenvalues()[0]
+                                : Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()[0];
+    const double thickness = std::sqrt(std::max(smallest, 0.0));
+    if (thickness < config_.degenerate_thickness) {
+        return std::string("the points lie on a single ") + (config_.planar ? "line" : "plane") + " (spread " +
+               Describe(thickness) + " m): motion unobservable";
+    }
+    return {};
+}
+
+Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
+    stats_ = OdometryFrameStats{};
+    stats_.input_points = scan.points.size();
+    const Eigen::Isometry3d last_pose = poses_.empty() ? Eigen::Isometry3d::Identity() : poses_.back();
+    const Eigen::Isometry3d delta = poses_.empty() ? Eigen::Isometry3d::Identity() : PredictMotion(scan);
+    Eigen::Isometry3d T_predicted = Orthonormalized(last_pose * delta);
+    if (config_.planar) T_predicted = ProjectToPlanar(T_predicted);
+
+    // Preprocessing, METHOD.md section 1: crop, deskew, downsample at 0.5 v and 1.5 v.
+    std::vector<std::size_t> kept;
+    deskewed_ = CropRange(scan.points, config_.min_range, config_.max_range, config_.deskew ? &kept : nullptr);
+    stats_.cropped_points = deskewed_.size();
+    if (config_.deskew && !poses_.empty()) {
+        const std::vector<double> all_times = SweepTimes(scan, config_.azimuth_clockwise);
+        std::vector<double> times(kept.size());
+        for (std::size_t i = 0; i < kept.size(); ++i) times[i] = all_times[kept[i]];
+        deskewed_ = Deskew(deskewed_, times, delta);
+    }
+    const double voxel = config_.VoxelSize();
+    downsampled_ = VoxelDownsample(deskewed_, 0.5 * voxel);
+    const std::vector<Eigen::Vector3d> source = VoxelDownsample(downsampled_, 1.5 * voxel);
+    stats_.map_points = downsampled_.size();
+    stats_.source_points = source.size();
+
+    const double sigma = threshold_.Sigma();
+    stats_.sigma = sigma;
+    std::string problem = DegeneracyReason(source);
+    Eigen::Isometry3d T_new = T_predicted;
+    if (problem.empty() && !map_.Empty()) {
+        IcpParams params;
+        params.max_correspondence_distance = 3.0 * sigma;
+        params.kernel = config_.kernel == IcpKernel::kPaper ? sigma / 3.0 : sigma;
+        params.max_iterations = config_.max_iterations;
+        params.convergence = config_.convergence;
+        params.min_correspondences = config_.min_correspondences;
+        params.planar = config_.planar;
+        const IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
+        stats_.iterations = icp.iterations;
+        stats_.correspondences = icp.correspondences;
+        const double correction = ModelError(T_predicted.inverse() * icp.T_world_sensor, config_.max_range);
+        if (!icp.valid) {
+            problem = "only " + std::to_string(icp.correspondences) + " correspondences within " +
+                      Describe(params.max_correspondence_distance) + " m of the map";
+        } else if (!icp.T_world_sensor.matrix().allFinite() || !(correction <= config_.max_correction)) {
+            problem = "ICP diverged (correction of " + Describe(correction) + " m model error)";
+        } else {
+            T_new = config_.planar ? ProjectToPlanar(icp.T_world_sensor) : Orthonormalized(icp.T_world_sensor);
+        }
+    }
+
+    if (!problem.empty()) {
+        stats_.degenerate = true;
+        stats_.warning = "scan " + std::to_string(scan.index) + ": " + problem + "; pose predicted " +
+                         (stats_.prior_used ? "from the odometry prior" : "by constant velocity");
+        ++num_degenerate_;
+    } else {
+        threshold_.Update(T_predicted.inverse() * T_new);
+        std::vector<Eigen::Vector3d> points_in_world(downsampled_.size());
+        for (std::size_t i = 0; i < downsampled_.size(); ++i) points_in_world[i] = T_new * downsampled_[i];
+        map_.AddPoints(points_in_world);
+        map_.RemoveFarFrom(T_new.translation(), config_.max_range);
+    }
+    last_delta_ = Orthonormalized(last_pose.inverse() * T_new);
+    last_T_odom_sensor_ = scan.T_odom_sensor;
+    poses_.push_back(T_new);
+    return T_new;
+}
+
+}  // namespace revisit

@@ -1,0 +1,72 @@
+#pragma once
+/// KISS-ICP-class scan-to-map LiDAR odometry (METHOD.md section 1): feed scans in order,
+/// get T_world_sensor of each (world = the first scan's sensor frame).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scan.hpp"
+#include "core/trajectory.hpp"
+#include "odometry/adaptive_threshold.hpp"
+#include "odometry/odometry_config.hpp"
+#include "odometry/voxel_hash_map.hpp"
+
+namespace revisit {
+
+/// What happened to the last frame; `warning` is non-empty when the pose is only a prediction.
+struct OdometryFrameStats {
+    std::size_t input_points = 0;
+    std::size_t cropped_points = 0;      ///< after the range crop
+    std::size_t map_points = 0;          ///< after the 0.5 v downsampling (what enters the map)
+    std::size_t source_points = 0;       ///< after the 1.5 v downsampling (what is registered)
+    std::size_t correspondences = 0;     ///< in the last ICP iteration
+    int iterations = 0;
+    double sigma = 0.0;                  ///< [m] adaptive threshold used for this frame
+    bool prior_used = false;             ///< the prediction came from Scan::T_odom_sensor
+    bool degenerate = false;             ///< pose = prediction, map not updated
+    std::string warning;                 ///< why the frame was degenerate
+};
+
+class LidarOdometry {
+  public:
+    /// Throws ConfigError on impossible values (non-positive ranges, voxel size, ...).
+    explicit LidarOdometry(const OdometryConfig& config = {});
+
+    /// Registers the next scan and returns its pose T_world_sensor. Never returns a non-finite
+    /// pose: a degenerate frame (empty, all out of range, a single plane, too few
+    /// correspondences) gets the motion prediction and a warning in LastStats().
+    Eigen::Isometry3d RegisterScan(const Scan& scan);
+
+    const Poses& poses() const { return poses_; }
+    /// The last scan's cropped (and, if enabled, deskewed) points, full resolution, sensor frame.
+    const std::vector<Eigen::Vector3d>& LastDeskewedPoints() const { return deskewed_; }
+    /// The last scan's points after the 0.5 v downsampling (sensor frame).
+    const std::vector<Eigen::Vector3d>& LastDownsampledPoints() const { return downsampled_; }
+    const OdometryFrameStats& LastStats() const { return stats_; }
+    const VoxelHashMap& LocalMap() const { return map_; }
+    const OdometryConfig& config() const { return config_; }
+    /// Count of frames that only got the prediction.
+    std::size_t NumDegenerateFrames() const { return num_degenerate_; }
+
+  private:
+    /// Motion expected from the previous pose to this scan: wheel odometry increment when
+    /// enabled and available, else the last registered motion (constant velocity).
+    Eigen::Isometry3d PredictMotion(const Scan& scan);
+    /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
+    std::string DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const;
+
+    OdometryConfig config_;
+    VoxelHashMap map_;
+    AdaptiveThreshold threshold_;
+    Poses poses_;
+    Eigen::Isometry3d last_delta_ = Eigen::Isometry3d::Identity();
+    std::optional<Eigen::Isometry3d> last_T_odom_sensor_;
+    std::vector<Eigen::Vector3d> deskewed_;
+    std::vector<Eigen::Vector3d> downsampled_;
+    OdometryFrameStats stats_;
+    std::size_t num_degenerate_ = 0;
+};
+
+}  // namespace revisit

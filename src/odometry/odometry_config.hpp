@@ -1,0 +1,40 @@
+#pragma once
+/// Parameters of the KISS-ICP-class LiDAR odometry (METHOD.md section 1).
+/// Defaults are the paper-era ones; "later" variants are options.
+namespace revisit {
+
+/// Geman-McClure kernel scale relative to the adaptive threshold sigma (METHOD.md section 1).
+enum class IcpKernel {
+    kPaper,  ///< k = sigma / 3 (paper-era code)
+    kLater,  ///< k = sigma (later code)
+};
+
+struct OdometryConfig {
+    // Range and voxels.
+    double max_range = 100.0;        ///< [m] points farther away are dropped; also the map radius
+    double min_range = 5.0;          ///< [m] points closer are dropped (ego vehicle)
+    double voxel_size = 0.0;         ///< [m] map voxel v; 0 means max_range / 100
+    int max_points_per_voxel = 20;   ///< map points kept per voxel
+    // Adaptive threshold (METHOD.md section 1).
+    double initial_threshold = 2.0;  ///< [m] sigma before any motion was seen
+    double min_motion_th = 0.1;      ///< [m] a frame updates sigma only when its model error exceeds this (KISS-ICP code)
+    // ICP.
+    IcpKernel kernel = IcpKernel::kPaper;
+    int max_iterations = 500;        ///< Gauss-Newton iterations per frame
+    double convergence = 1e-4;       ///< stop when |dx| of an update is below this [m, rad]
+    int min_correspondences = 20;    ///< fewer: the frame is degenerate, keep the prediction
+    double max_correction = 20.0;    ///< [m] model error of prediction^-1 * ICP result beyond which ICP is deemed diverged
+    // Motion model and inputs.
+    bool deskew = false;             ///< constant-velocity motion compensation of each sweep
+    bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
+    bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)
+    bool use_prior = true;           ///< use Scan::T_odom_sensor increments (wheel odometry) as the motion guess when present
+    /// KITTI's 0.205 degree vertical-angle correction is NOT done here: it is a property of the
+    /// data, applied by the reader (ReaderOptions::kitti_vertical_correction, configs/kitti.yaml).
+    double degenerate_thickness = 0.02;  ///< [m] a frame whose points lie within this of a plane (3D) or line (planar) is degenerate
+
+    /// The map voxel size actually used [m].
+    double VoxelSize() const { return voxel_size > 0.0 ? voxel_size : max_range / 100.0; }
+};
+
+}  // namespace revisit

@@ -1,0 +1,157 @@
+#include "odometry/registration.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "core/se3.hpp"
+
+namespace revisit {
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
+    Eigen::Matrix3d m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+}
+
+/// Weighted sums from which the normal equations are assembled. With J = [I, -hat(p)] (left
+/// perturbation of the point p), J^T J and J^T r need only these moments, so a point costs a
+/// few dozen flops instead of a 6x6 outer product.
+struct Moments {
+    double w = 0.0;                                       ///< sum w
+    Eigen::Vector3d wp = Eigen::Vector3d::Zero();         ///< sum w p
+    Eigen::Matrix3d wppt = Eigen::Matrix3d::Zero();       ///< sum w p p^T
+    Eigen::Vector3d wr = Eigen::Vector3d::Zero();         ///< sum w r
+    Eigen::Vector3d wpxr = Eigen::Vector3d::Zero();       ///< sum w p x r
+    std::size_t count = 0;
+
+    Moments& operator+=(const Moments& other) {
+        w += other.w;
+        wp += other.wp;
+        wppt += other.wppt;
+        wr += other.wr;
+        wpxr += other.wpxr;
+        count += other.count;
+        return *this;
+    }
+};
+
+Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMap& map, const Eigen::Isometry3d& T,
+                   const Eigen::Vector3d& centre, const IcpParams& params) {
+    const double k2 = params.kernel * params.kernel;
+    // Deterministic reduce: the split tree depends only on the range and grain, never on the
+    // thread count, so the floating-point sums are identical with 1 or N threads.
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, points.size(), 256), Moments{},
+        [&](const tbb::blocked_range<std::size_t>& range, Moments sums) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const Eigen::Vector3d p_world = T * points[i];
+                const Eigen::Vector3d* nearest = map.FindNearest(p_world, params.max_correspondence_distance);
+                if (nearest == nullptr) continue;
+                const Eigen::Vector3d r = p_world - *nearest;
+                const Eigen::Vector3d p = p_world - centre;  // linearize about the sensor: better conditioned
+                const double denominator = params.kernel + r.squaredNorm();
+                const double w = k2 / (denominator * denominator);
+                sums.w += w;
+                sums.wp += w * p;
+                sums.wppt.noalias() += (w * p) * p.transpose();
+                sums.wr += w * r;
+                sums.wpxr += w * p.cross(r);
+                ++sums.count;
+            }
+            return sums;
+        },
+        [](Moments a, const Moments& b) { return a += b; });
+}
+
+/// J^T J and J^T r from the moments (J = [I, -hat(p)], tangent order [rho; phi]).
+void AssembleNormalEquations(const Moments& m, Matrix6d& JTJ, Vector6d& JTr) {
+    JTJ.topLeftCorner<3, 3>() = m.w * Eigen::Matrix3d::Identity();
+    JTJ.topRightCorner<3, 3>() = -Hat(m.wp);
+    JTJ.bottomLeftCorner<3, 3>() = Hat(m.wp);
+    JTJ.bottomRightCorner<3, 3>() = m.wppt.trace() * Eigen::Matrix3d::Identity() - m.wppt;
+    JTr.head<3>() = m.wr;
+    JTr.tail<3>() = m.wpxr;
+}
+
+/// Gauss-Newton step; planar mode solves only for (x, y, yaw) = tangent indices 0, 1, 5.
+Vector6d SolveStep(const Matrix6d& JTJ, const Vector6d& JTr, bool planar) {
+    if (!planar) return JTJ.ldlt().solve(-JTr);
+    const int dofs[3] = {0, 1, 5};
+    Eigen::Matrix3d A;
+    Eigen::Vector3d b;
+    for (int i = 0; i < 3; ++i) {
+        b[i] = -JTr[dofs[i]];
+        for (int j = 0; j < 3; ++j) A(i, j) = JTJ(dofs[i], dofs[j]);
+    }
+    const Eigen::Vector3d x = A.ldlt().solve(b);
+    Vector6d dx = Vector6d::Zero();
+    for (int i = 0; i < 3; ++i) dx[dofs[i]] = x[i];
+    return dx;
+}
+
+Eigen::Isometry3d Translation(const Eigen::Vector3d& t) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = t;
+    return T;
+}
+
+}  // namespace
+
+IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sensor, const VoxelHashMap& map,
+                              const Eigen::Isometry3d& T_initial, const IcpParams& params) {
+    IcpResult result;
+    result.T_world_sensor = T_initial;
+    if (map.Empty() || points_in_sensor.empty()) return result;
+
+    // Updates are applied in a frame centred at the initial sensor position; the fixed point is
+    // the same as with world-origin updates (KISS-ICP), the steps are better conditioned far
+    // from the origin.
+    const Eigen::Vector3d centre = T_initial.translation();
+    Eigen::Isometry3d T_centred = Translation(-centre) * T_initial;
+    Matrix6d JTJ;
+    Vector6d JTr;
+    result.valid = true;
+    for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
+        const Eigen::Isometry3d T = Translation(centre) * T_centred;
+        const Moments moments = Accumulate(points_in_sensor, map, T, centre, params);
+        result.correspondences = moments.count;
+        result.iterations = iteration + 1;
+        if (moments.count < static_cast<std::size_t>(std::max(params.min_correspondences, 1))) {
+            result.valid = false;
+            break;
+        }
+        AssembleNormalEquations(moments, JTJ, JTr);
+        const Vector6d dx = SolveStep(JTJ, JTr, params.planar);
+        if (!dx.allFinite()) {
+            result.valid = false;
+            break;
+        }
+        T_centred = ExpSE3(dx) * T_centred;
+        if (dx.norm() < params.convergence) {
+            result.converged = true;
+            break;
+        }
+    }
+    if (!result.valid) {
+        result.T_world_sensor = T_initial;
+        return result;
+    }
+    result.T_world_sensor = Translation(centre) * T_centred;
+    return result;
+}
+
+Eigen::Isometry3d ProjectToPlanar(const Eigen::Isometry3d& T) {
+    const Eigen::Vector3d x_axis = T.linear().col(0);
+    const double yaw = std::atan2(x_axis.y(), x_axis.x());
+    Eigen::Isometry3d planar = Eigen::Isometry3d::Identity();
+    planar.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    planar.translation() = Eigen::Vector3d(T.translation().x(), T.translation().y(), 0.0);
+    return planar;
+}
+
+}  // namespace revisit

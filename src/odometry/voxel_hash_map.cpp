@@ -1,0 +1,138 @@
+#include "odometry/voxel_hash_map.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace revisit {
+namespace {
+
+/// The 27 neighbour offsets ordered centre, faces, edges, corners: a near-optimal visiting
+/// order for the pruned search (closer voxels first tighten the bound early).
+std::array<Voxel, 27> MakeOffsets() {
+    std::array<Voxel, 27> offsets;
+    int n = 0;
+    for (int ring = 0; ring <= 3; ++ring) {
+        for (int x = -1; x <= 1; ++x) {
+            for (int y = -1; y <= 1; ++y) {
+                for (int z = -1; z <= 1; ++z) {
+                    if (std::abs(x) + std::abs(y) + std::abs(z) == ring) offsets[n++] = Voxel(x, y, z);
+                }
+            }
+        }
+    }
+    return offsets;
+}
+const std::array<Voxel, 27> kOffsets = MakeOffsets();
+
+}  // namespace
+
+VoxelHashMap::VoxelHashMap(double voxel_size, int max_points_per_voxel)
+    : voxel_size_(voxel_size),
+      inv_voxel_size_(1.0 / voxel_size),
+      max_points_(std::max(1, max_points_per_voxel)),
+      min_spacing2_(voxel_size * voxel_size / std::max(1, max_points_per_voxel)) {}
+
+void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
+    for (const auto& point : points) {
+        const Voxel voxel = VoxelOfInverse(point, inv_voxel_size_);
+        const auto [it, inserted] = index_.try_emplace(voxel, static_cast<std::uint32_t>(voxels_.size()));
+        if (inserted) {
+            voxels_.push_back(voxel);
+            counts_.push_back(1);
+            points_.resize(points_.size() + max_points_);
+            points_[static_cast<std::size_t>(it->second) * max_points_] = point;
+            continue;
+        }
+        const std::size_t slot = it->second;
+        const int count = counts_[slot];
+        if (count >= max_points_) continue;
+        const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
+        const bool too_close = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& p) {
+            return (p - point).squaredNorm() < min_spacing2_;
+        });
+        if (too_close) continue;
+        points_[slot * max_points_ + count] = point;
+        ++counts_[slot];
+    }
+}
+
+void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance) {
+    const double max_distance2 = max_distance * max_distance;
+    std::size_t slot = 0;
+    while (slot < voxels_.size()) {
+        if ((points_[slot * max_points_] - origin).squaredNorm() <= max_distance2) {
+            ++slot;
+            continue;
+        }
+        // Swap-remove: the last voxel moves into this slot, so storage stays dense.
+        const std::size_t last = voxels_.size() - 1;
+        index_.erase(voxels_[slot]);
+        if (slot != last) {
+            voxels_[slot] = voxels_[last];
+            counts_[slot] = counts_[last];
+            std::copy_n(points_.begin() + last * max_points_, counts_[last], points_.begin() + slot * max_points_);
+            index_[voxels_[slot]] = static_cast<std::uint32_t>(slot);
+        }
+        voxels_.pop_back();
+        counts_.pop_back();
+        points_.resize(points_.size() - max_points_);
+    }
+}
+
+void VoxelHashMap::Clear() {
+    index_.clear();
+    voxels_.clear();
+    counts_.clear();
+    points_.clear();
+}
+
+const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
+    const Eigen::Vector3d scaled = query * inv_voxel_size_;
+    const Eigen::Vector3d floor = scaled.array().floor();
+    const Voxel centre = floor.cast<int>();
+    // Squared distance from the query to the lower and upper neighbour voxel along each axis.
+    const Eigen::Vector3d below = (scaled - floor) * voxel_size_;
+    const Eigen::Vector3d above = Eigen::Vector3d::Constant(voxel_size_) - below;
+    const Eigen::Vector3d below2 = below.cwiseProduct(below);
+    const Eigen::Vector3d above2 = above.cwiseProduct(above);
+
+    double best2 = max_distance * max_distance;
+    const Eigen::Vector3d* best = nullptr;
+    for (const Voxel& offset : kOffsets) {
+        double box2 = 0.0;
+        for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
+        if (box2 >= best2) continue;
+        const auto it = index_.find(Voxel(centre + offset));
+        if (it == index_.end()) continue;
+        const std::size_t slot = it->second;
+        const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
+        const Eigen::Vector3d* end = begin + counts_[slot];
+        for (const Eigen::Vector3d* p = begin; p != end; ++p) {
+            const double d2 = (*p - query).squaredNorm();
+            if (d2 < best2) {
+                best2 = d2;
+                best = p;
+            }
+        }
+    }
+    return best;
+}
+
+std::size_t VoxelHashMap::NumPoints() const {
+    std::size_t n = 0;
+    for (const auto count : counts_) n += count;
+    return n;
+}
+
+std::vector<Eigen::Vector3d> VoxelHashMap::Points() const {
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(NumPoints());
+    for (std::size_t slot = 0; slot < voxels_.size(); ++slot) {
+        points.insert(points.end(), points_.begin() + slot * max_points_,
+                      points_.begin() + slot * max_points_ + counts_[slot]);
+    }
+    return points;
+}
+
+}  // namespace revisit

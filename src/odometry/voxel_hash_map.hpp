@@ -1,0 +1,56 @@
+#pragma once
+/// The odometry's local map: a voxel hash map with a bounded number of points per voxel
+/// (METHOD.md section 1). Points of a voxel are stored contiguously for cache-friendly search.
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <tsl/robin_map.h>
+#include <vector>
+
+#include "core/voxel.hpp"
+
+namespace revisit {
+
+/// Integer voxel coordinates of a point for a given inverse voxel size [1/m] (a multiplication
+/// instead of core's division: this runs for every neighbour query of the ICP).
+inline Voxel VoxelOfInverse(const Eigen::Vector3d& point, double inv_voxel_size) {
+    return (point * inv_voxel_size).array().floor().cast<int>();
+}
+
+class VoxelHashMap {
+  public:
+    /// `voxel_size` [m]; a voxel holds at most `max_points_per_voxel` points, at least
+    /// voxel_size / sqrt(max_points_per_voxel) apart (METHOD.md section 1). Memory: every voxel
+    /// reserves max_points_per_voxel points (24 bytes each), so keep that number small.
+    VoxelHashMap(double voxel_size, int max_points_per_voxel);
+
+    /// Adds world-frame points; order matters (the first points of a voxel are kept).
+    void AddPoints(const std::vector<Eigen::Vector3d>& points);
+    /// Drops voxels whose first point is farther than `max_distance` [m] from `origin`.
+    void RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance);
+    void Clear();
+
+    /// Nearest map point to `query` within the 27 voxels around it and strictly closer than
+    /// `max_distance` [m]; nullptr when there is none. Exact within those voxels: voxels that
+    /// cannot beat the best point so far are not even looked up. The pointer is valid until the
+    /// map changes.
+    const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance) const;
+
+    bool Empty() const { return voxels_.empty(); }
+    std::size_t NumVoxels() const { return voxels_.size(); }
+    std::size_t NumPoints() const;
+    std::vector<Eigen::Vector3d> Points() const;
+    double voxel_size() const { return voxel_size_; }
+
+  private:
+    double voxel_size_;
+    double inv_voxel_size_;
+    int max_points_;
+    double min_spacing2_;  ///< [m^2] squared minimum distance between points of one voxel
+    tsl::robin_map<Voxel, std::uint32_t, VoxelHash> index_;  ///< voxel -> slot
+    std::vector<Voxel> voxels_;                              ///< slot -> voxel
+    std::vector<std::uint16_t> counts_;                      ///< slot -> number of points
+    std::vector<Eigen::Vector3d> points_;                    ///< slot * max_points_ + k
+};
+
+}  // namespace revisit

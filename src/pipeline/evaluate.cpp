@@ -1,0 +1,167 @@
+#include "pipeline/evaluate.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <iomanip>
+
+#include "evaluation/ground_truth_closures.hpp"
+#include "evaluation/scan_context.hpp"
+#include "io/reader.hpp"
+#include "pipeline/progress.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+/// Ground-truth closures and ScanContext descriptors from one pass over the scans of the run.
+struct DatasetPass {
+    GtClosures ground_truth;
+    std::vector<ScanContextDescriptor> scan_context;
+};
+
+DatasetPass ReadDatasetPass(const RunState& state, const RunOptions& options, const PipelineConfig& config,
+                            const std::optional<GtClosures>& cached, std::ostream& log) {
+    DatasetPass pass;
+    const bool need_scan_context = config.output.scan_context;
+    if (cached) pass.ground_truth = *cached;
+    if (cached && !need_scan_context) return pass;
+    ReaderOptions reader_options;
+    reader_options.sensor_label = config.input.sensor_label;
+    reader_options.kitti_vertical_correction = config.input.kitti_vertical_correction;
+    auto reader = OpenDataset(options.dataset, reader_options);
+    GroundTruthBuilder builder(state.reference, config.ground_truth);
+    Progress progress(log, Progress::DetectMode(options.quiet), state.reference.size(), "scans (evaluation)");
+    std::size_t position = 0;
+    while (position < state.reference.size()) {
+        auto scan = reader->Next();
+        if (!scan) break;
+        if (scan->index < options.from) continue;
+        if (!cached && builder.NeedsScan(position)) builder.AddScan(position, scan->points);
+        if (need_scan_context) pass.scan_context.push_back(MakeScanContext(scan->points, config.scan_context));
+        progress.Update(++position);
+    }
+    progress.Finish(position);
+    if (!cached) pass.ground_truth = builder.Finish();
+    return pass;
+}
+
+std::optional<GtClosures> ReadCache(const fs::path& file, const std::string& key) {
+    std::ifstream in(file);
+    return in ? ReadGroundTruthClosures(in, key) : std::nullopt;
+}
+
+std::vector<MapClosureForEval> ForEval(const RunState& state, const std::string& method) {
+    std::vector<MapClosureForEval> out;
+    for (const auto& record : state.closures) {
+        if (record.method != method) continue;
+        const auto& c = record.closure;
+        MapClosureForEval e;
+        e.query_first_scan = c.query_scans.first;
+        e.query_last_scan = c.query_scans.last;
+        e.ref_first_scan = c.ref_scans.first;
+        e.ref_last_scan = c.ref_scans.last;
+        // The refined pose where there is one: it is what the graph uses.
+        e.T_query_ref = record.refined && record.accepted ? record.refinement.T_query_ref : Eigen::Isometry3d(c.T_query_ref);
+        e.inliers = c.num_inliers;
+        out.push_back(e);
+    }
+    return out;
+}
+
+TrajectoryEvaluation EvaluateTrajectory(const Poses& estimate, const Poses& reference) {
+    return {ComputeApe(estimate, reference, true), ComputeRpe(estimate, reference, 1), ComputeKittiErrors(estimate, reference)};
+}
+
+json StatsJson(const ErrorStatistics& s) {
+    return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"std", s.std}, {"min", s.min}, {"max", s.max}, {"count", s.count}};
+}
+
+json TrajectoryJson(const TrajectoryEvaluation& t) {
+    return {{"ape_translation_m", StatsJson(t.ape.errors.translation_stats)},
+            {"ape_rotation_deg", StatsJson(t.ape.errors.rotation_deg_stats)},
+            {"rpe_translation_m", StatsJson(t.rpe.translation_stats)},
+            {"rpe_rotation_deg", StatsJson(t.rpe.rotation_deg_stats)},
+            {"kitti_translation_percent", t.kitti.translation_percent},
+            {"kitti_rotation_deg_per_100m", t.kitti.rotation_deg_per_100m},
+            {"kitti_segments", t.kitti.num_segments}};
+}
+
+void WriteMetrics(const RunFolder& run, const RunEvaluation& e) {
+    json methods = json::array();
+    for (const auto& m : e.methods) {
+        methods.push_back({{"method", m.method}, {"precision", m.best.precision}, {"recall", m.best.recall},
+                           {"f1", m.best.f1}, {"threshold", m.best.threshold},
+                           {"recall_at_100_precision", m.has_full_precision ? json(m.recall_at_full_precision) : json(nullptr)},
+                           {"ape_rmse_before_m", m.ape_rmse_before ? json(*m.ape_rmse_before) : json(nullptr)},
+                           {"ape_rmse_after_m", m.ape_rmse_after ? json(*m.ape_rmse_after) : json(nullptr)}});
+    }
+    const json metrics = {
+        {"ground_truth", {{"segments", e.gt_segments}, {"closing_segment_pairs", e.gt_closing_segment_pairs}, {"scan_pairs", e.gt_scan_pairs}}},
+        {"methods", methods},
+        {"map_level", {{"assessed_closures", e.map_metrics.closures.size()}, {"right_map_fraction", e.map_metrics.fraction_right},
+                       {"translation_error_m", StatsJson(e.map_metrics.translation_error)},
+                       {"yaw_error_deg", StatsJson(e.map_metrics.yaw_error_deg)},
+                       {"maps_with_revisit", e.map_recall.maps_with_revisit}, {"maps_found_right", e.map_recall.maps_found_right},
+                       {"map_recall", e.map_recall.recall}}},
+        {"trajectory", {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}}}};
+    std::ofstream(run.metrics_json()) << std::setw(2) << metrics << '\n';
+    for (const auto& [method, sweep] : e.sweeps) {
+        std::ofstream csv(run.root() / ("pr_curve_" + method + ".csv"));
+        WritePrCurveCsv(csv, sweep);
+    }
+    std::ofstream table(run.root() / "comparison.md");
+    WriteComparisonTable(table, e.methods);
+}
+
+}  // namespace
+
+std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
+                                         const PipelineConfig& config, std::ostream& log) {
+    if (!state.has_reference() || state.odometry.size() < 2) return std::nullopt;
+    const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth,
+                                                state.dataset + "#" + std::to_string(options.from) + "#" +
+                                                    std::to_string(state.reference.size()));
+    const fs::path cache_file = run.root() / "ground_truth_closures.txt";
+    const auto cached = ReadCache(cache_file, key);
+    const DatasetPass pass = ReadDatasetPass(state, options, config, cached, log);
+    if (!cached) {
+        std::ofstream out(cache_file);
+        WriteGroundTruthClosures(out, pass.ground_truth, key);
+    }
+    const auto& gt = pass.ground_truth;
+
+    RunEvaluation e;
+    e.gt_segments = gt.segments.size();
+    e.gt_closing_segment_pairs = gt.segment_pairs.size();
+    e.gt_scan_pairs = gt.scan_pairs.size();
+    e.odometry = EvaluateTrajectory(state.odometry, state.reference);
+    e.corrected = EvaluateTrajectory(state.corrected, state.reference);
+
+    const auto density = ForEval(state, "density");
+    e.sweeps["density"] = ScoreMapClosures(density, state.odometry, gt.scan_pairs, config.predicted);
+    auto density_summary = SummarizeMethod("density maps", e.sweeps["density"]);
+    density_summary.ape_rmse_before = e.odometry.ape.errors.translation_stats.rmse;
+    density_summary.ape_rmse_after = e.corrected.ape.errors.translation_stats.rmse;
+    e.methods.push_back(density_summary);
+    if (config.output.elevation_ablation) {
+        e.sweeps["elevation"] = ScoreMapClosures(ForEval(state, "elevation"), state.odometry, gt.scan_pairs, config.predicted);
+        e.methods.push_back(SummarizeMethod("elevation maps", e.sweeps["elevation"]));
+    }
+    if (!pass.scan_context.empty()) {
+        e.sweeps["scan_context"] = ScoreScanContext(SearchScanContext(pass.scan_context, config.scan_context), gt.scan_pairs);
+        e.methods.push_back(SummarizeMethod("ScanContext", e.sweeps["scan_context"]));
+    }
+    MapMetricsConfig map_config;
+    map_config.min_inliers = config.detector.min_inliers;
+    e.map_metrics = EvaluateMapClosures(density, state.reference, gt.scan_pairs, map_config);
+    std::vector<MapRange> ranges;
+    for (const auto& m : state.maps) ranges.push_back({m.first_scan, m.last_scan});
+    e.map_recall = ComputeMapRecall(ranges, density, gt.scan_pairs, map_config);
+    WriteMetrics(run, e);
+    return e;
+}
+
+}  // namespace revisit

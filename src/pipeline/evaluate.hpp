@@ -1,0 +1,40 @@
+#pragma once
+/// Evaluation of a run (METHOD.md section 7): ground-truth closures (cached in the run folder),
+/// PR sweeps of density maps, the elevation ablation and ScanContext on the same scan pairs,
+/// map-level accuracy, and trajectory errors before and after correction.
+#include <optional>
+#include <ostream>
+
+#include "evaluation/method_comparison.hpp"
+#include "evaluation/map_metrics.hpp"
+#include "evaluation/trajectory_metrics.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace revisit {
+
+struct TrajectoryEvaluation {
+    ApeResult ape;
+    PoseErrors rpe;
+    KittiErrors kitti;
+};
+
+struct RunEvaluation {
+    std::size_t gt_segments = 0;
+    std::size_t gt_closing_segment_pairs = 0;
+    std::size_t gt_scan_pairs = 0;
+    std::map<std::string, PrSweepResult> sweeps;  ///< per method
+    std::vector<MethodSummary> methods;
+    MapMetrics map_metrics;
+    MapRecall map_recall;
+    TrajectoryEvaluation odometry;
+    TrajectoryEvaluation corrected;
+};
+
+/// Everything above for a run with reference poses (nullopt without): re-reads the dataset once
+/// (only the scans the ground truth and ScanContext need), writes metrics.json, pr_curve_<method>.csv
+/// and comparison.md into the run folder.
+std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
+                                         const PipelineConfig& config, std::ostream& log);
+
+}  // namespace revisit

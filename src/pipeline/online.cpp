@@ -1,0 +1,210 @@
+#include "pipeline/online.hpp"
+
+#include <chrono>
+
+#include "optimization/point_grid.hpp"
+
+namespace revisit {
+namespace {
+
+class MemoryMapStore final : public MapPointStore {
+  public:
+    void Put(int map_id, const std::vector<Eigen::Vector3f>& points) override { maps_[map_id] = points; }
+    std::vector<Eigen::Vector3f> Get(int map_id) const override {
+        const auto it = maps_.find(map_id);
+        return it == maps_.end() ? std::vector<Eigen::Vector3f>{} : it->second;
+    }
+
+  private:
+    std::map<int, std::vector<Eigen::Vector3f>> maps_;
+};
+
+/// The detector runs with a gate of 3 inliers so that the evaluation can sweep the acceptance
+/// threshold from 3 (METHOD.md section 7); closures below the configured gamma are recorded but
+/// never refined nor added to the graph.
+constexpr int kSweepMinInliers = 3;
+
+ClosureDetectorConfig SweepConfig(ClosureDetectorConfig config) {
+    config.min_inliers = std::min(config.min_inliers, kSweepMinInliers);
+    return config;
+}
+
+std::vector<Eigen::Vector3d> ToDouble(const std::vector<Eigen::Vector3f>& points) {
+    std::vector<Eigen::Vector3d> out(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) out[i] = points[i].cast<double>();
+    return out;
+}
+
+std::vector<Eigen::Vector3f> Downsampled(const std::vector<Eigen::Vector3f>& points, double voxel) {
+    const auto kept = VoxelDownsample(ToDouble(points), voxel);
+    std::vector<Eigen::Vector3f> out(kept.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) out[i] = kept[i].cast<float>();
+    return out;
+}
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::unique_ptr<MapPointStore> MakeMemoryMapStore() { return std::make_unique<MemoryMapStore>(); }
+
+ClosurePipeline::ClosurePipeline(const PipelineConfig& config, std::unique_ptr<MapPointStore> store)
+    : config_(config), store_(store ? std::move(store) : MakeMemoryMapStore()), mapper_(config.local_map),
+      detector_(SweepConfig(config.detector)) {
+    if (config.output.elevation_ablation) {
+        ClosureDetectorConfig elevation = SweepConfig(config.detector);
+        elevation.density.elevation_instead = true;
+        elevation.store_images = false;
+        elevation_detector_.emplace(elevation);
+    }
+}
+
+void ClosurePipeline::Time(const std::string& stage, double ms) {
+    auto& timer = timings_[stage];
+    timer.total_ms += ms;
+    timer.count++;
+}
+
+PipelineUpdate ClosurePipeline::AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
+                                        const Eigen::Isometry3d& T_world_sensor) {
+    const auto start = std::chrono::steady_clock::now();
+    auto closed = mapper_.AddScan(scan_index, points_in_sensor, T_world_sensor);
+    Time("local_map", MillisecondsSince(start));
+    return closed ? ProcessMap(*closed) : PipelineUpdate{};
+}
+
+PipelineUpdate ClosurePipeline::Finish() {
+    PipelineUpdate update;
+    if (auto last = mapper_.Finish()) update = ProcessMap(*last);
+    Optimize(true);
+    return update;
+}
+
+PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
+    PipelineUpdate update;
+    auto start = std::chrono::steady_clock::now();
+    const auto stored = Downsampled(map.points, config_.output.map_voxel);
+    store_->Put(map.id, stored);
+    Time("map_store", MillisecondsSince(start));
+
+    start = std::chrono::steady_clock::now();
+    const auto closures = detector_.AddMap(map);
+    const auto& stats = detector_.last_stats();
+    Time("detector", MillisecondsSince(start));
+    Time("detector.ground", stats.ground_ms);
+    Time("detector.density", stats.density_ms);
+    Time("detector.features", stats.features_ms);
+    Time("detector.tree", stats.tree_ms);
+    Time("detector.ransac", stats.ransac_ms);
+    const MapRecord& record = detector_.maps().back();
+    if (on_map_closed) on_map_closed(map, record);
+
+    MapRecordSummary summary;
+    summary.id = map.id;
+    summary.first_scan = map.first_scan;
+    summary.last_scan = map.last_scan;
+    summary.T_world_map = map.T_world_map;
+    summary.T_world_map_corrected = map.T_world_map;
+    summary.travel_start = map.travel_start;
+    summary.travel_end = map.travel_end;
+    summary.num_points = map.points.size();
+    summary.num_keypoints = static_cast<int>(record.keypoints.size());
+    summary.density_origin = record.origin;
+    summary.density_resolution = record.resolution;
+    summary.T_ground_map = record.T_ground_map;
+    maps_.push_back(summary);
+    nodes_.push_back(map.T_world_map);
+    corrected_nodes_.push_back(corrected_nodes_.empty() ? map.T_world_map
+                                                        : corrected_nodes_.back() * nodes_[nodes_.size() - 2].inverse() *
+                                                              map.T_world_map);
+
+    for (const auto& closure : closures) {
+        closures_.push_back(VerifyClosure(closure, stored));
+        update.closures.push_back(closures_.back());
+    }
+    if (elevation_detector_) {
+        start = std::chrono::steady_clock::now();
+        for (auto& closure : elevation_detector_->AddMap(map)) {
+            ClosureRecord record_elevation;
+            record_elevation.method = "elevation";
+            record_elevation.closure = std::move(closure);
+            record_elevation.reason = "ablation (not used for correction)";
+            closures_.push_back(record_elevation);
+            update.closures.push_back(record_elevation);
+        }
+        Time("detector.elevation_ablation", MillisecondsSince(start));
+    }
+    if (accepted_since_optimization_ >= config_.graph_noise.optimize_every_closures) Optimize(false);
+    update.closed_map = maps_.back();
+    return update;
+}
+
+ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points) {
+    ClosureRecord record;
+    record.closure = closure;
+    if (closure.num_inliers < config_.detector.min_inliers) {
+        record.reason = "below the acceptance threshold (" + std::to_string(closure.num_inliers) + " < " +
+                        std::to_string(config_.detector.min_inliers) + " inliers)";
+        return record;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const auto ref_points = store_->Get(closure.ref_id);
+    record.refinement = RefineAlignment(ToDouble(ref_points), ToDouble(query_points),
+                                        Eigen::Isometry3d(closure.T_query_ref), config_.refinement);
+    Time("refinement", MillisecondsSince(start));
+    record.refined = true;
+    record.accepted = record.refinement.accepted;
+    record.reason = record.refinement.reason;
+    if (record.accepted) {
+        PoseGraphEdge edge;
+        edge.from = closure.ref_id;
+        edge.to = closure.query_id;
+        edge.T_from_to = record.refinement.T_query_ref.inverse();  // T_ref_query: the query origin in the reference map
+        edge.is_loop = true;
+        const auto& noise = config_.graph_noise;
+        edge.information = noise.closure_information_from_registration && record.refinement.information.trace() > 0
+                               ? record.refinement.information
+                               : DiagonalInformation(noise.closure_sigma_translation, noise.closure_sigma_rotation);
+        loop_edges_.push_back(edge);
+        loop_edge_closure_.push_back(closures_.size());
+        ++accepted_since_optimization_;
+    }
+    return record;
+}
+
+void ClosurePipeline::Optimize(bool final) {
+    accepted_since_optimization_ = 0;
+    if (nodes_.size() < 2 || loop_edges_.empty()) {
+        corrected_nodes_ = nodes_;
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const auto& noise = config_.graph_noise;
+    auto edges = OdometryEdges(nodes_, DiagonalInformation(noise.odometry_sigma_translation, noise.odometry_sigma_rotation));
+    const std::size_t num_odometry = edges.size();
+    edges.insert(edges.end(), loop_edges_.begin(), loop_edges_.end());
+    PoseGraphConfig graph = config_.graph;
+    graph.max_time_s = final ? 0.0 : noise.online_time_budget;
+    const auto result = OptimizePoseGraph(nodes_, edges, graph);
+    corrected_nodes_ = result.T_world_node;
+    for (std::size_t i = 0; i < loop_edges_.size(); ++i) {
+        closures_[loop_edge_closure_[i]].graph_weight = result.edge_weights[num_odometry + i];
+    }
+    for (std::size_t m = 0; m < maps_.size(); ++m) maps_[m].T_world_map_corrected = corrected_nodes_[m];
+    Time(final ? "pose_graph.final" : "pose_graph.online", MillisecondsSince(start));
+}
+
+Poses ClosurePipeline::CorrectTrajectory(const Poses& T_world_sensor, const std::vector<int>& map_of_scan) const {
+    Poses corrected(T_world_sensor.size());
+    for (std::size_t i = 0; i < T_world_sensor.size(); ++i) {
+        const int m = i < map_of_scan.size() ? map_of_scan[i] : -1;
+        corrected[i] = m < 0 || m >= static_cast<int>(nodes_.size())
+                           ? T_world_sensor[i]
+                           : corrected_nodes_[m] * nodes_[m].inverse() * T_world_sensor[i];
+    }
+    return corrected;
+}
+
+}  // namespace revisit

@@ -1,0 +1,78 @@
+#pragma once
+/// The online API: feed scans with their poses one at a time; receive each local map as it closes
+/// and the closures it makes, refined, verified and applied to the pose graph. `revisit run` is a
+/// loop over a reader around this class; a SLAM system embeds it the same way.
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "closures/detector.hpp"
+#include "closures/local_map.hpp"
+#include "optimization/pose_graph.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/run_state.hpp"
+
+namespace revisit {
+
+/// Where closed maps' points live until a later map closes with them: memory by default, the run
+/// folder for `revisit run` (memory stays bounded by one local map and the database).
+class MapPointStore {
+  public:
+    virtual ~MapPointStore() = default;
+    virtual void Put(int map_id, const std::vector<Eigen::Vector3f>& points_in_map) = 0;
+    virtual std::vector<Eigen::Vector3f> Get(int map_id) const = 0;
+};
+std::unique_ptr<MapPointStore> MakeMemoryMapStore();
+
+/// What one call changed.
+struct PipelineUpdate {
+    std::optional<MapRecordSummary> closed_map;  ///< the map this scan closed, if any
+    std::vector<ClosureRecord> closures;         ///< closures of that map (all methods), verdicts included
+};
+
+class ClosurePipeline {
+  public:
+    /// `store` null: keep map points in memory.
+    explicit ClosurePipeline(const PipelineConfig& config, std::unique_ptr<MapPointStore> store = nullptr);
+
+    /// One scan: points in the sensor frame (deskewed if the odometry deskews) and its pose.
+    PipelineUpdate AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
+                           const Eigen::Isometry3d& T_world_sensor);
+    /// Closes the last map and runs the final batch optimization.
+    PipelineUpdate Finish();
+
+    /// Map origins after the latest optimization (index = map id).
+    const Poses& CorrectedMapPoses() const { return corrected_nodes_; }
+    const std::vector<MapRecordSummary>& maps() const { return maps_; }
+    const std::vector<ClosureRecord>& closures() const { return closures_; }
+    const ClosureDetector& detector() const { return detector_; }
+    /// Every scan pose re-anchored to its optimized map origin (METHOD.md section 6).
+    Poses CorrectTrajectory(const Poses& T_world_sensor, const std::vector<int>& map_of_scan) const;
+    /// Accumulated stage timings.
+    const std::map<std::string, StageTimer>& timings() const { return timings_; }
+    /// Called with every closed map before it is dropped (e.g. to save its density image).
+    std::function<void(const LocalMap&, const MapRecord&)> on_map_closed;
+
+  private:
+    PipelineUpdate ProcessMap(const LocalMap& map);
+    ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points);
+    void Optimize(bool final);
+    void Time(const std::string& stage, double ms);
+
+    PipelineConfig config_;
+    std::unique_ptr<MapPointStore> store_;
+    LocalMapper mapper_;
+    ClosureDetector detector_;
+    std::optional<ClosureDetector> elevation_detector_;
+    std::vector<MapRecordSummary> maps_;
+    std::vector<ClosureRecord> closures_;
+    Poses nodes_;            ///< odometry map origins
+    Poses corrected_nodes_;  ///< after the last optimization
+    std::vector<PoseGraphEdge> loop_edges_;
+    std::vector<std::size_t> loop_edge_closure_;  ///< closures_ index of each loop edge
+    int accepted_since_optimization_ = 0;
+    std::map<std::string, StageTimer> timings_;
+};
+
+}  // namespace revisit

@@ -1,0 +1,220 @@
+#include "pipeline/pipeline.hpp"
+
+#include <sys/resource.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+
+#include "closures/database_io.hpp"
+#include "core/error.hpp"
+#include "io/reader.hpp"
+#include "io/trajectory_io.hpp"
+#include "odometry/lidar_odometry.hpp"
+#include "pipeline/folder_map_store.hpp"
+#include "pipeline/global_map.hpp"
+#include "pipeline/interrupt.hpp"
+#include "pipeline/online.hpp"
+#include "pipeline/progress.hpp"
+#include "pipeline/run_files.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::size_t PeakRssKb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<std::size_t>(usage.ru_maxrss);
+}
+
+namespace {
+
+const char* PoseSourceName(PoseSource source) {
+    switch (source) {
+        case PoseSource::kOdometry: return "odometry";
+        case PoseSource::kDataset: return "dataset";
+        default: return "file";
+    }
+}
+
+/// Reference poses per scan from a ground-truth file: by time stamp for TUM, by index for KITTI.
+class ReferenceSource {
+  public:
+    explicit ReferenceSource(const fs::path& file) : file_(file) {
+        if (!file.empty()) trajectory_ = ReadPoses(file);
+    }
+    bool active() const { return !file_.empty(); }
+    std::optional<Eigen::Isometry3d> At(std::size_t index, double timestamp) const {
+        if (trajectory_.has_timestamps()) {
+            const long i = AssociateByTime(trajectory_.timestamps, {timestamp}, kMaxTimeDifference).front();
+            return i < 0 ? std::nullopt : std::optional<Eigen::Isometry3d>(trajectory_.poses[i]);
+        }
+        return index < trajectory_.size() ? std::optional<Eigen::Isometry3d>(trajectory_.poses[index]) : std::nullopt;
+    }
+
+  private:
+    static constexpr double kMaxTimeDifference = 0.02;  ///< [s] half a 10 Hz scan period
+    fs::path file_;
+    Trajectory trajectory_;
+};
+
+std::vector<Eigen::Vector3f> ToFloat(const std::vector<Eigen::Vector3d>& points) {
+    std::vector<Eigen::Vector3f> out(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) out[i] = points[i].cast<float>();
+    return out;
+}
+
+void WriteBytes(const fs::path& file, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(file, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+}  // namespace
+
+void WriteRunOptions(const RunFolder& run, const RunOptions& o) {
+    nlohmann::json j = {{"dataset", fs::absolute(o.dataset).string()}, {"poses", PoseSourceName(o.poses)},
+                        {"poses_file", o.poses_file.empty() ? "" : fs::absolute(o.poses_file).string()},
+                        {"gt_file", o.gt_file.empty() ? "" : fs::absolute(o.gt_file).string()},
+                        {"from", o.from}, {"to", o.to ? nlohmann::json(*o.to) : nlohmann::json(nullptr)}};
+    std::ofstream(run.root() / "run_options.json") << std::setw(2) << j << '\n';
+}
+
+RunOptions ReadRunOptions(const RunFolder& run) {
+    const fs::path file = run.root() / "run_options.json";
+    std::ifstream in(file);
+    if (!in) throw DatasetError(file, "cannot open (not a revisit run folder?)");
+    try {
+        const auto j = nlohmann::json::parse(in);
+        RunOptions o;
+        o.dataset = j.at("dataset").get<std::string>();
+        const std::string poses = j.at("poses").get<std::string>();
+        o.poses = poses == "odometry" ? PoseSource::kOdometry : poses == "dataset" ? PoseSource::kDataset : PoseSource::kFile;
+        o.poses_file = j.at("poses_file").get<std::string>();
+        o.gt_file = j.at("gt_file").get<std::string>();
+        o.from = j.at("from").get<std::size_t>();
+        if (!j.at("to").is_null()) o.to = j.at("to").get<std::size_t>();
+        o.out = run.root();
+        return o;
+    } catch (const nlohmann::json::exception& e) {
+        throw DatasetError(file, std::string("malformed: ") + e.what());
+    }
+}
+
+RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log) {
+    const auto run_start = Clock::now();
+    ReaderOptions reader_options;
+    reader_options.sensor_label = config.input.sensor_label;
+    reader_options.kitti_vertical_correction = config.input.kitti_vertical_correction;
+    // Open every input before creating the run folder: bad input fails without leaving anything behind.
+    auto reader = OpenDataset(options.dataset, reader_options);
+    const Trajectory pose_file = options.poses == PoseSource::kFile ? ReadPoses(options.poses_file) : Trajectory{};
+    const ReferenceSource ground_truth(options.gt_file);
+    const RunFolder run = RunFolder::Create(options.out, options.force);
+    WriteRunOptions(run, options);
+    std::ofstream(run.config()) << DumpConfig(config);
+
+    // The ablation only matters when it can be scored.
+    PipelineConfig effective = config;
+    const bool expect_reference = ground_truth.active() || reader->Info().has_reference_poses;
+    effective.output.elevation_ablation = config.output.elevation_ablation && expect_reference;
+    ClosurePipeline pipeline(effective, MakeFolderMapStore(run));
+    pipeline.on_map_closed = [&run](const LocalMap& map, const MapRecord& record) {
+        if (!record.image_png.empty()) WriteBytes(run.map_density(map.id), record.image_png);
+    };
+    std::optional<LidarOdometry> odometry;
+    if (options.poses == PoseSource::kOdometry) odometry.emplace(config.odometry);
+
+    RunState state;
+    state.dataset = fs::absolute(options.dataset).string();
+    state.format = reader->Info().format;
+    state.poses_source = options.poses == PoseSource::kFile ? options.poses_file.string() : PoseSourceName(options.poses);
+    std::optional<std::size_t> total;
+    if (reader->Info().num_scans) {
+        const std::size_t last = std::min(*reader->Info().num_scans, options.to ? *options.to + 1 : *reader->Info().num_scans);
+        total = last > options.from ? last - options.from : 0;
+    }
+    Progress progress(log, Progress::DetectMode(options.quiet), total);
+    InstallInterruptHandler();
+    bool reference_complete = true;
+    std::size_t degenerate_frames = 0;
+    std::map<std::string, StageTimer> timings;
+    const auto time = [&timings](const char* stage, Clock::time_point start) {
+        auto& t = timings[stage];
+        t.total_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        t.count++;
+    };
+    std::size_t accepted = 0;
+    auto read_start = Clock::now();
+    while (auto scan = reader->Next()) {
+        time("read", read_start);
+        if (InterruptRequested()) break;
+        if (scan->index < options.from) continue;
+        if (options.to && scan->index > *options.to) break;
+        const std::size_t position = state.odometry.size();
+        Eigen::Isometry3d T_world_sensor;
+        std::vector<Eigen::Vector3f> points;
+        const auto odometry_start = Clock::now();
+        if (odometry) {
+            T_world_sensor = odometry->RegisterScan(*scan);
+            points = ToFloat(odometry->LastDeskewedPoints());
+            degenerate_frames += odometry->LastStats().degenerate;
+            time("odometry", odometry_start);
+        } else if (options.poses == PoseSource::kDataset) {
+            if (!scan->T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan->index) +
+                                                                               " has no reference pose; use --poses odometry");
+            T_world_sensor = *scan->T_world_sensor;
+            points = std::move(scan->points);
+        } else {
+            if (scan->index >= pose_file.size()) {
+                throw DatasetError(options.poses_file, "has " + std::to_string(pose_file.size()) + " poses; scan " +
+                                                           std::to_string(scan->index) + " has none");
+            }
+            T_world_sensor = pose_file.poses[scan->index];
+            points = std::move(scan->points);
+        }
+        state.timestamps.push_back(scan->timestamp);
+        state.odometry.push_back(T_world_sensor);
+        const auto reference = ground_truth.active() ? ground_truth.At(scan->index, scan->timestamp) : scan->T_world_sensor;
+        if (reference && reference_complete) state.reference.push_back(*reference);
+        else reference_complete = false;
+        const auto update = pipeline.AddScan(position, points, T_world_sensor);
+        for (const auto& c : update.closures) accepted += c.accepted;
+        progress.Update(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
+                                                   std::to_string(accepted));
+        read_start = Clock::now();
+    }
+    state.complete = !InterruptRequested();
+    pipeline.Finish();
+    progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
+                                               std::to_string(pipeline.closures().size()));
+    if (!reference_complete) state.reference.clear();
+
+    state.maps = pipeline.maps();
+    state.closures = pipeline.closures();
+    state.map_of_scan.assign(state.odometry.size(), -1);
+    for (const auto& m : state.maps) {
+        for (std::size_t s = m.first_scan; s <= m.last_scan && s < state.map_of_scan.size(); ++s) state.map_of_scan[s] = m.id;
+    }
+    state.corrected = pipeline.CorrectTrajectory(state.odometry, state.map_of_scan);
+    state.timings = pipeline.timings();
+    for (const auto& [stage, timer] : timings) state.timings[stage] = timer;
+
+    auto start = Clock::now();
+    SaveDatabase(pipeline.detector(), run.database());
+    WriteGlobalMap(run, state, config.output.global_map_voxel);
+    time("write", start);
+    state.timings["write"] = timings["write"];
+    state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
+    state.peak_rss_kb = PeakRssKb();
+    WriteRunState(run, state);
+    if (degenerate_frames > 0) log << "warning: " << degenerate_frames << " scans gave no usable registration (pose predicted)\n";
+    const std::string drops = DescribeDrops(reader->Stats());
+    if (!drops.empty()) log << "note: " << drops << '\n';
+    if (!state.complete) log << "interrupted: wrote the " << state.odometry.size() << " scans processed so far (run.json: complete = false)\n";
+    return state;
+}
+
+}  // namespace revisit

@@ -1,0 +1,43 @@
+#pragma once
+/// `revisit run`: a dataset streamed through odometry, local maps, closures, refinement and the pose
+/// graph, into a run folder; then evaluation (when ground truth exists) and the report.
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include "pipeline/config.hpp"
+#include "pipeline/run_folder.hpp"
+#include "pipeline/run_state.hpp"
+
+namespace revisit {
+
+enum class PoseSource {
+    kOdometry,  ///< our LiDAR odometry
+    kDataset,   ///< the dataset's reference poses
+    kFile,      ///< a KITTI or TUM trajectory file
+};
+
+struct RunOptions {
+    std::filesystem::path dataset;
+    std::filesystem::path out;          ///< the run folder
+    PoseSource poses = PoseSource::kOdometry;
+    std::filesystem::path poses_file;   ///< kFile
+    std::filesystem::path gt_file;      ///< ground truth (KITTI or TUM), else the dataset's own poses
+    std::size_t from = 0;               ///< first scan index read
+    std::optional<std::size_t> to;      ///< last scan index read (inclusive)
+    bool force = false;
+    bool quiet = false;
+};
+
+/// Runs everything and writes the run folder. Progress and the summary go to `log`. Ctrl-C stops
+/// reading; what was computed is written and run.json says "complete": false.
+RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log);
+
+/// The run's options as stored in run.json, so `revisit eval` can re-read the same scans.
+void WriteRunOptions(const RunFolder& run, const RunOptions& options);
+RunOptions ReadRunOptions(const RunFolder& run);
+
+/// Peak resident memory of this process [KiB].
+std::size_t PeakRssKb();
+
+}  // namespace revisit

@@ -1,0 +1,42 @@
+#pragma once
+/// Progress of long work on stderr: one rewritten line with a bar on a terminal, plain periodic
+/// lines otherwise (logs, CI), nothing when quiet.
+#include <chrono>
+#include <cstddef>
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace revisit {
+
+class Progress {
+  public:
+    enum class Mode { kTerminal, kPlain, kQuiet };
+
+    /// `total` may be unknown (rawlogs): then no bar and no ETA.
+    Progress(std::ostream& out, Mode mode, std::optional<std::size_t> total, std::string unit = "scans");
+
+    /// Terminal when stderr is a tty, plain otherwise, quiet when asked.
+    static Mode DetectMode(bool quiet);
+
+    /// `extra` is appended, e.g. "maps 12  closures 3". Throttled: cheap to call every item.
+    void Update(std::size_t done, const std::string& extra = "");
+    /// Clears the bar (terminal) and prints the final rate.
+    void Finish(std::size_t done, const std::string& extra = "");
+
+    /// "1:02:03" or "2:03".
+    static std::string FormatDuration(double seconds);
+
+  private:
+    std::string Line(std::size_t done, const std::string& extra, double elapsed) const;
+
+    std::ostream& out_;
+    Mode mode_;
+    std::optional<std::size_t> total_;
+    std::string unit_;
+    std::chrono::steady_clock::time_point start_;
+    std::chrono::steady_clock::time_point last_print_;
+    bool printed_ = false;
+};
+
+}  // namespace revisit

@@ -1,0 +1,235 @@
+#include "pipeline/run_files.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/trajectory_io.hpp"
+#include "pipeline/csv.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::size_t RunState::NumAccepted() const {
+    std::size_t n = 0;
+    for (const auto& c : closures) n += c.accepted;
+    return n;
+}
+
+namespace {
+
+void WriteLines(const fs::path& file, const std::vector<std::string>& header, const std::vector<std::string>& rows) {
+    std::ofstream out(file);
+    for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
+    out << '\n';
+    for (const auto& row : rows) out << row << '\n';
+    if (!out) throw DatasetError(file, "write failed");
+}
+
+std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+void WriteJson(const fs::path& file, const json& value) {
+    std::ofstream out(file);
+    out << std::setw(2) << value << '\n';
+    if (!out) throw DatasetError(file, "write failed");
+}
+
+json ReadJson(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) throw DatasetError(file, "cannot open");
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        throw DatasetError(file, std::string("invalid JSON: ") + e.what());
+    }
+}
+
+fs::path ClosureDetailFile(const RunFolder& run, std::size_t index) {
+    std::ostringstream name;
+    name << std::setw(4) << std::setfill('0') << index << ".json";
+    return run.root() / "closures" / name.str();
+}
+
+void WriteMaps(const RunFolder& run, const RunState& state) {
+    const auto header = Concat(Concat(Concat({"id", "first_scan", "last_scan", "travel_start_m", "travel_end_m", "num_points",
+                                              "num_keypoints", "density_origin_x", "density_origin_y", "density_resolution"},
+                                             PoseColumns("T_world_map")),
+                                      PoseColumns("T_world_map_corrected")),
+                               PoseColumns("T_ground_map"));
+    std::vector<std::string> rows;
+    for (const auto& m : state.maps) {
+        rows.push_back(CsvRow()
+                           .Add(m.id).Add(m.first_scan).Add(m.last_scan).Add(m.travel_start).Add(m.travel_end)
+                           .Add(m.num_points).Add(m.num_keypoints).Add(m.density_origin.x()).Add(m.density_origin.y())
+                           .Add(m.density_resolution).AddPose(m.T_world_map).AddPose(m.T_world_map_corrected)
+                           .AddPose(m.T_ground_map)
+                           .Text());
+    }
+    WriteLines(run.local_maps_csv(), header, rows);
+}
+
+void WriteClosures(const RunFolder& run, const RunState& state) {
+    const auto header = Concat(Concat(Concat({"index", "method", "query", "reference", "query_first_scan", "query_last_scan",
+                                              "ref_first_scan", "ref_last_scan", "inliers", "votes"},
+                                             PoseColumns("T_query_ref")),
+                                      PoseColumns("T_query_ref_refined")),
+                               {"overlap", "rms_m", "correspondences", "refined", "accepted", "graph_weight", "reason"});
+    std::vector<std::string> rows;
+    fs::create_directories(run.root() / "closures");
+    for (std::size_t i = 0; i < state.closures.size(); ++i) {
+        const auto& r = state.closures[i];
+        const auto& c = r.closure;
+        rows.push_back(CsvRow()
+                           .Add(i).Add(r.method).Add(c.query_id).Add(c.ref_id).Add(c.query_scans.first)
+                           .Add(c.query_scans.last).Add(c.ref_scans.first).Add(c.ref_scans.last).Add(c.num_inliers)
+                           .Add(c.num_votes).AddPose(Eigen::Isometry3d(c.T_query_ref)).AddPose(r.refinement.T_query_ref)
+                           .Add(r.refinement.overlap).Add(r.refinement.rms).Add(r.refinement.num_correspondences)
+                           .Add(r.refined).Add(r.accepted).Add(r.graph_weight).Add(r.reason)
+                           .Text());
+        WriteClosureDetail(ClosureDetailFile(run, i), c);
+    }
+    WriteLines(run.closures_csv(), header, rows);
+}
+
+Trajectory WithTimes(const RunState& state, const Poses& poses) {
+    Trajectory t;
+    t.poses = poses;
+    t.timestamps = state.timestamps;
+    return t;
+}
+
+}  // namespace
+
+void WriteClosureDetail(const fs::path& file, const Closure& c) {
+    json j;
+    j["query_keypoints"] = json::array();
+    for (const auto& k : c.query_keypoints) j["query_keypoints"].push_back({k.x(), k.y()});
+    j["ref_keypoints"] = json::array();
+    for (const auto& k : c.ref_keypoints) j["ref_keypoints"].push_back({k.x(), k.y()});
+    j["matches"] = json::array();
+    for (std::size_t i = 0; i < c.matches.size(); ++i) {
+        const auto& m = c.matches[i];
+        j["matches"].push_back({m.query_keypoint, m.ref_keypoint, m.distance, i < c.inlier_mask.size() ? c.inlier_mask[i] : 0});
+    }
+    WriteJson(file, j);
+}
+
+void ReadClosureDetail(const fs::path& file, Closure& c) {
+    const json j = ReadJson(file);
+    try {
+        c.query_keypoints.clear();
+        c.ref_keypoints.clear();
+        c.matches.clear();
+        c.inlier_mask.clear();
+        for (const auto& k : j.at("query_keypoints")) c.query_keypoints.emplace_back(k.at(0).get<float>(), k.at(1).get<float>());
+        for (const auto& k : j.at("ref_keypoints")) c.ref_keypoints.emplace_back(k.at(0).get<float>(), k.at(1).get<float>());
+        for (const auto& m : j.at("matches")) {
+            c.matches.push_back(FeatureMatch{m.at(0).get<int>(), m.at(1).get<int>(), m.at(2).get<int>()});
+            c.inlier_mask.push_back(m.at(3).get<std::uint8_t>());
+        }
+    } catch (const json::exception& e) {
+        throw DatasetError(file, std::string("malformed closure detail: ") + e.what());
+    }
+}
+
+void WriteRunState(const RunFolder& run, const RunState& state) {
+    WriteKittiPoses(run.odometry_kitti(), state.odometry);
+    WriteTumPoses(run.odometry_tum(), WithTimes(state, state.odometry));
+    WriteKittiPoses(run.corrected_kitti(), state.corrected);
+    WriteTumPoses(run.corrected_tum(), WithTimes(state, state.corrected));
+    if (state.has_reference()) WriteTumPoses(run.reference_tum(), WithTimes(state, state.reference));
+    WriteMaps(run, state);
+    WriteClosures(run, state);
+    json timings = json::object();
+    for (const auto& [stage, timer] : state.timings) {
+        timings[stage] = {{"total_ms", timer.total_ms}, {"count", timer.count},
+                          {"mean_ms", timer.count ? timer.total_ms / timer.count : 0.0}};
+    }
+    WriteJson(run.timings_json(), timings);
+    WriteJson(run.run_info(), {{"dataset", state.dataset}, {"format", state.format}, {"poses", state.poses_source},
+                               {"complete", state.complete}, {"scans", state.odometry.size()},
+                               {"maps", state.maps.size()}, {"closures", state.closures.size()},
+                               {"accepted_closures", state.NumAccepted()}, {"wall_seconds", state.wall_seconds},
+                               {"peak_rss_kb", state.peak_rss_kb}, {"revisit_version", "0.1.0"}});
+}
+
+RunState ReadRunState(const RunFolder& run) {
+    RunState state;
+    const json info = ReadJson(run.run_info());
+    try {
+        state.dataset = info.at("dataset").get<std::string>();
+        state.format = info.at("format").get<std::string>();
+        state.poses_source = info.at("poses").get<std::string>();
+        state.complete = info.at("complete").get<bool>();
+        state.wall_seconds = info.value("wall_seconds", 0.0);
+        state.peak_rss_kb = info.value("peak_rss_kb", std::size_t{0});
+    } catch (const json::exception& e) {
+        throw DatasetError(run.run_info(), std::string("malformed run info: ") + e.what());
+    }
+    const Trajectory odometry = ReadTumPoses(run.odometry_tum());
+    state.timestamps = odometry.timestamps;
+    state.odometry = odometry.poses;
+    state.corrected = ReadKittiPoses(run.corrected_kitti()).poses;
+    if (fs::exists(run.reference_tum())) state.reference = ReadTumPoses(run.reference_tum()).poses;
+    const auto maps = CsvTable::Read(run.local_maps_csv());
+    state.map_of_scan.assign(state.odometry.size(), -1);
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        MapRecordSummary m;
+        m.id = static_cast<int>(maps.Integer(i, "id"));
+        m.first_scan = static_cast<std::size_t>(maps.Integer(i, "first_scan"));
+        m.last_scan = static_cast<std::size_t>(maps.Integer(i, "last_scan"));
+        m.travel_start = maps.Number(i, "travel_start_m");
+        m.travel_end = maps.Number(i, "travel_end_m");
+        m.num_points = static_cast<std::size_t>(maps.Integer(i, "num_points"));
+        m.num_keypoints = static_cast<int>(maps.Integer(i, "num_keypoints"));
+        m.density_origin = {maps.Number(i, "density_origin_x"), maps.Number(i, "density_origin_y")};
+        m.density_resolution = maps.Number(i, "density_resolution");
+        m.T_world_map = maps.Pose(i, "T_world_map");
+        m.T_world_map_corrected = maps.Pose(i, "T_world_map_corrected");
+        m.T_ground_map = maps.Pose(i, "T_ground_map");
+        for (std::size_t s = m.first_scan; s <= m.last_scan && s < state.map_of_scan.size(); ++s) state.map_of_scan[s] = m.id;
+        state.maps.push_back(m);
+    }
+    const auto closures = CsvTable::Read(run.closures_csv());
+    for (std::size_t i = 0; i < closures.size(); ++i) {
+        ClosureRecord r;
+        r.method = closures.Text(i, "method");
+        auto& c = r.closure;
+        c.query_id = static_cast<int>(closures.Integer(i, "query"));
+        c.ref_id = static_cast<int>(closures.Integer(i, "reference"));
+        c.query_scans = {static_cast<std::size_t>(closures.Integer(i, "query_first_scan")),
+                         static_cast<std::size_t>(closures.Integer(i, "query_last_scan"))};
+        c.ref_scans = {static_cast<std::size_t>(closures.Integer(i, "ref_first_scan")),
+                       static_cast<std::size_t>(closures.Integer(i, "ref_last_scan"))};
+        c.num_inliers = static_cast<int>(closures.Integer(i, "inliers"));
+        c.num_votes = static_cast<int>(closures.Integer(i, "votes"));
+        c.T_query_ref = closures.Pose(i, "T_query_ref").matrix();
+        r.refinement.T_query_ref = closures.Pose(i, "T_query_ref_refined");
+        r.refinement.overlap = closures.Number(i, "overlap");
+        r.refinement.rms = closures.Number(i, "rms_m");
+        r.refinement.num_correspondences = static_cast<int>(closures.Integer(i, "correspondences"));
+        r.refined = closures.Integer(i, "refined") != 0;
+        r.accepted = closures.Integer(i, "accepted") != 0;
+        r.refinement.accepted = r.accepted;
+        r.graph_weight = closures.Number(i, "graph_weight");
+        r.reason = closures.Text(i, "reason");
+        r.refinement.reason = r.reason;
+        const auto detail = ClosureDetailFile(run, i);
+        if (fs::exists(detail)) ReadClosureDetail(detail, c);
+        state.closures.push_back(std::move(r));
+    }
+    const json timings = ReadJson(run.timings_json());
+    for (const auto& [stage, value] : timings.items()) {
+        state.timings[stage] = StageTimer{value.value("total_ms", 0.0), value.value("count", std::size_t{0})};
+    }
+    return state;
+}
+
+}  // namespace revisit

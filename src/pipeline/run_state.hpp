@@ -1,0 +1,66 @@
+#pragma once
+/// Everything a run computes, small enough to keep for a whole sequence (poses, map and closure
+/// records; never the scans or map points), and what `revisit eval` / `revisit report` read back.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "closures/closure.hpp"
+#include "core/trajectory.hpp"
+#include "optimization/refinement.hpp"
+
+namespace revisit {
+
+struct MapRecordSummary {
+    int id = 0;
+    std::size_t first_scan = 0;
+    std::size_t last_scan = 0;  ///< inclusive
+    Eigen::Isometry3d T_world_map = Eigen::Isometry3d::Identity();  ///< odometry pose of the first scan
+    Eigen::Isometry3d T_world_map_corrected = Eigen::Isometry3d::Identity();
+    double travel_start = 0.0;  ///< [m]
+    double travel_end = 0.0;    ///< [m]
+    std::size_t num_points = 0;
+    int num_keypoints = 0;
+    Eigen::Vector2d density_origin = Eigen::Vector2d::Zero();  ///< [m]
+    double density_resolution = 0.0;                           ///< [m per pixel]
+    Eigen::Isometry3d T_ground_map = Eigen::Isometry3d::Identity();
+};
+
+struct ClosureRecord {
+    std::string method = "density";  ///< "density" or "elevation" (the ablation, never used in the graph)
+    Closure closure;
+    RefinementResult refinement;
+    bool refined = false;            ///< false: below the acceptance threshold, not refined
+    bool accepted = false;           ///< refined, verified and added to the pose graph
+    std::string reason;              ///< why not accepted
+    double graph_weight = 0.0;       ///< final robust weight in the pose graph (accepted only)
+};
+
+/// Accumulated wall time per stage.
+struct StageTimer {
+    double total_ms = 0.0;
+    std::size_t count = 0;
+};
+
+struct RunState {
+    std::string dataset;
+    std::string format;
+    std::string poses_source;  ///< "odometry", "dataset" or a file
+    bool complete = false;     ///< false when interrupted
+    std::vector<double> timestamps;
+    Poses odometry;            ///< per scan: the poses the maps were built from
+    Poses corrected;           ///< per scan, after the pose graph
+    Poses reference;           ///< per scan, or empty when the dataset has no reference
+    std::vector<int> map_of_scan;
+    std::vector<MapRecordSummary> maps;
+    std::vector<ClosureRecord> closures;
+    std::map<std::string, StageTimer> timings;
+    double wall_seconds = 0.0;
+    std::size_t peak_rss_kb = 0;
+
+    bool has_reference() const { return !reference.empty() && reference.size() == odometry.size(); }
+    std::size_t NumAccepted() const;
+};
+
+}  // namespace revisit

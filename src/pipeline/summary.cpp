@@ -1,0 +1,53 @@
+#include "pipeline/summary.hpp"
+
+#include <iomanip>
+
+namespace revisit {
+
+void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation) {
+    std::size_t density = 0, refined = 0;
+    for (const auto& c : state.closures) {
+        density += c.method == "density";
+        refined += c.refined;
+    }
+    out << std::fixed << std::setprecision(1);
+    out << "\n  scans             " << state.odometry.size() << (state.complete ? "" : "  (interrupted)") << '\n'
+        << "  local maps        " << state.maps.size() << '\n'
+        << "  closures          " << density << " detected (>= 3 inliers), " << refined << " verified in 3D, "
+        << state.NumAccepted() << " accepted\n"
+        << "  wall time         " << state.wall_seconds << " s (" << (state.wall_seconds > 0 ? state.odometry.size() / state.wall_seconds : 0.0)
+        << " scans/s), peak memory " << state.peak_rss_kb / 1024 << " MiB\n\n";
+    out << "  stage                           total [s]    mean [ms]    calls\n";
+    for (const auto& [stage, timer] : state.timings) {
+        if (timer.count == 0) continue;
+        out << "  " << std::left << std::setw(30) << stage << std::right << std::setw(11) << std::setprecision(2)
+            << timer.total_ms / 1000.0 << std::setw(13) << std::setprecision(3) << timer.total_ms / timer.count << std::setw(9)
+            << timer.count << '\n';
+    }
+    if (!evaluation) {
+        out << "\n  (no reference poses: no metrics; give --gt FILE to evaluate)\n";
+        return;
+    }
+    out << "\n  ground truth: " << evaluation->gt_scan_pairs << " scan pairs in " << evaluation->gt_closing_segment_pairs
+        << " closing segment pairs\n\n";
+    out << "  method            precision  recall     F1   R@100%P   APE before [m]  APE after [m]\n";
+    for (const auto& m : evaluation->methods) {
+        out << "  " << std::left << std::setw(16) << m.method << std::right << std::setprecision(3) << std::setw(11)
+            << m.best.precision << std::setw(8) << m.best.recall << std::setw(7) << m.best.f1 << std::setw(10);
+        if (m.has_full_precision) out << m.recall_at_full_precision;
+        else out << "-";
+        out << std::setprecision(2) << std::setw(17);
+        if (m.ape_rmse_before) out << *m.ape_rmse_before; else out << "-";
+        out << std::setw(15);
+        if (m.ape_rmse_after) out << *m.ape_rmse_after; else out << "-";
+        out << '\n';
+    }
+    const auto& before = evaluation->odometry.ape.errors.translation_stats;
+    const auto& after = evaluation->corrected.ape.errors.translation_stats;
+    if (before.rmse > 0) {
+        out << "\n  APE translation RMSE: " << before.rmse << " m -> " << after.rmse << " m ("
+            << std::setprecision(0) << 100.0 * (1.0 - after.rmse / before.rmse) << "% lower)\n";
+    }
+}
+
+}  // namespace revisit

@@ -1,0 +1,67 @@
+#include "render/overview.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <cstdio>
+
+namespace revisit {
+namespace {
+
+Extent ContentExtent(const OverviewData& data) {
+    Extent extent;
+    for (const auto* trajectory : {&data.odometry, &data.corrected, &data.reference})
+        for (const auto& p : *trajectory) extent.Add(p);
+    // The map decides the extent too, but through a subsample: stray far points must not shrink the picture.
+    const std::size_t stride = std::max<std::size_t>(1, data.map_points.size() / 50000);
+    for (std::size_t i = 0; i < data.map_points.size(); i += stride) extent.Add(data.map_points[i].cast<double>());
+    return extent;
+}
+
+}  // namespace
+
+cv::Mat RenderOverview(const OverviewData& data, OverviewView view, const RenderConfig& config) {
+    const bool oblique = view == OverviewView::kOblique;
+    const Extent extent = ContentExtent(data);
+    mrpt::opengl::COpenGLScene scene;
+    scene.getViewport()->setCustomBackgroundColor({1.f, 1.f, 1.f});
+    const double grid_spacing = oblique ? AddGroundGrid(scene, extent, GroundHeight(data.map_points, extent)) : 0.0;
+    AddHeightColoredCloud(scene, data.map_points, config);
+
+    RenderedFrame frame = OffscreenRenderer::Instance().Render(scene, FrameExtent(extent, oblique, config),
+                                                               config.width, config.height);
+
+    std::vector<Polyline2d> rejected, accepted;
+    for (const auto& closure : data.closures)
+        (closure.accepted ? accepted : rejected)
+            .push_back(ProjectPolyline(frame, {closure.query_position, closure.ref_position}));
+    const int thick = config.line_thickness;
+    DrawPolylines(frame.image, rejected, palette::kRejected, std::max(1, thick - 1), 0.35);
+    // Ground truth as a wider band under the others: it stays visible where the corrected trajectory agrees.
+    DrawPolylines(frame.image, {ProjectPolyline(frame, data.reference)}, palette::kReference, thick + 4);
+    DrawPolylines(frame.image, {ProjectPolyline(frame, data.odometry)}, palette::kOdometry, thick);
+    DrawPolylines(frame.image, {ProjectPolyline(frame, data.corrected)}, palette::kCorrected, thick);
+    DrawPolylines(frame.image, accepted, palette::kAccepted, thick);
+    for (const auto& line : accepted)  // end points, so that a closure between nearby places stays visible
+        for (const auto& p : line) cv::circle(frame.image, p, thick + 2, palette::kAccepted.Bgr(), cv::FILLED, cv::LINE_AA);
+
+    std::vector<LegendEntry> legend;
+    if (!data.map_points.empty()) {
+        legend.push_back({"map, low", HeightColor(0.0), false});
+        legend.push_back({"map, high", HeightColor(1.0), false});
+    }
+    if (!data.odometry.empty()) legend.push_back({"odometry", palette::kOdometry});
+    if (!data.corrected.empty()) legend.push_back({"corrected", palette::kCorrected});
+    if (!data.reference.empty()) legend.push_back({"ground truth", palette::kReference});
+    if (!accepted.empty()) legend.push_back({"accepted closure (" + std::to_string(accepted.size()) + ")", palette::kAccepted});
+    if (!rejected.empty()) legend.push_back({"rejected closure (" + std::to_string(rejected.size()) + ")", palette::kRejected});
+    if (oblique && grid_spacing > 0.0) {
+        char text[48];
+        std::snprintf(text, sizeof(text), "grid %g m", grid_spacing);
+        legend.push_back({text, {215, 215, 215}});
+    }
+    DrawLegend(frame.image, legend, oblique ? "Overview (oblique)" : "Overview (top-down)");
+    if (!extent.Empty()) AnnotateOrientation(frame, 0.5 * (extent.min + extent.max), oblique);
+    return frame.image;
+}
+
+}  // namespace revisit

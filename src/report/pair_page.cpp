@@ -1,0 +1,139 @@
+#include "report/pair_page.hpp"
+
+#include "render/map_pair_view.hpp"
+#include "report/html_page.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+namespace revisit {
+namespace {
+
+std::optional<DensityImage> LoadDensity(const ReportInput& input, const std::optional<LocalMap>& map, int id,
+                                        const ReportConfig& config) {
+    if (input.load_density_image)
+        if (auto image = input.load_density_image(id)) return image;
+    // Not stored in the run: recompute from the map (unlevelled; fine for looking at it).
+    if (map) return ComputeDensityImage(map->points, config.density);
+    return std::nullopt;
+}
+
+std::optional<LocalMap> LoadMap(const ReportInput& input, int id) {
+    return input.load_local_map ? input.load_local_map(id) : std::nullopt;
+}
+
+/// Relative pose of two maps from the odometry: what the detector had before any closure.
+std::optional<Eigen::Matrix4d> OdometryRelativePose(const ReportInput& input, const ClosureEntry& entry,
+                                                   const std::optional<LocalMap>& query, const std::optional<LocalMap>& ref) {
+    if (query && ref) return (query->T_world_map.inverse() * ref->T_world_map).matrix();
+    const auto& poses = input.odometry.T_world_sensor;
+    const auto q = entry.closure.query_scans.first, r = entry.closure.ref_scans.first;
+    if (q < poses.size() && r < poses.size()) return (poses[q].inverse() * poses[r]).matrix();
+    return std::nullopt;
+}
+
+std::string PoseText(const Eigen::Matrix4d& T) {
+    const double yaw = std::atan2(T(1, 0), T(0, 0)) * 180.0 / M_PI;
+    return "x " + FormatNumber(T(0, 3)) + " m, y " + FormatNumber(T(1, 3)) + " m, z " + FormatNumber(T(2, 3)) +
+           " m, yaw " + FormatNumber(yaw, 2) + " deg";
+}
+
+std::string Optional(const std::optional<double>& value, const std::string& unit, int decimals = 3) {
+    return value ? FormatNumber(*value, decimals) + unit : "-";
+}
+
+}  // namespace
+
+void WritePng(const std::filesystem::path& path, const cv::Mat& image) {
+    if (!cv::imwrite(path.string(), image)) throw std::runtime_error("report: cannot write " + path.string());
+}
+
+void WriteText(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error("report: cannot write " + path.string());
+}
+
+PairPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool detected, const std::string& stem,
+                       const std::filesystem::path& report_dir, const ReportConfig& config, const std::string& nav_html) {
+    const Closure& c = entry.closure;
+    const auto query_map = LoadMap(input, c.query_id);
+    const auto ref_map = LoadMap(input, c.ref_id);
+    const auto query_density = LoadDensity(input, query_map, c.query_id, config);
+    const auto ref_density = LoadDensity(input, ref_map, c.ref_id, config);
+    const auto T_odometry = OdometryRelativePose(input, entry, query_map, ref_map);
+    const Eigen::Matrix4d T_after = entry.T_query_ref_refined.value_or(c.T_query_ref);
+
+    PairPage result;
+    HtmlPage page(detected ? "Closure: map " + std::to_string(c.query_id) + " to map " + std::to_string(c.ref_id)
+                           : "Maps " + std::to_string(c.query_id) + " and " + std::to_string(c.ref_id) + " (not a detected closure)");
+    page.Raw(nav_html);
+    std::vector<std::pair<std::string, std::string>> numbers{
+        {"query map", std::to_string(c.query_id) + " (session " + std::to_string(c.query_session) + ", scans " +
+                          std::to_string(c.query_scans.first) + "-" + std::to_string(c.query_scans.last) + ")"},
+        {"reference map", std::to_string(c.ref_id) + " (session " + std::to_string(c.ref_session) + ", scans " +
+                              std::to_string(c.ref_scans.first) + "-" + std::to_string(c.ref_scans.last) + ")"}};
+    if (detected) {
+        numbers.push_back({"status", std::string(entry.accepted ? "accepted" : "rejected") +
+                                         (entry.reason.empty() ? "" : ": " + entry.reason)});
+        numbers.push_back({"matches / inliers / votes", std::to_string(c.matches.size()) + " / " +
+                                                            std::to_string(c.num_inliers) + " / " + std::to_string(c.num_votes)});
+        numbers.push_back({"T_query_ref (detector)", PoseText(c.T_query_ref)});
+        if (entry.T_query_ref_refined) numbers.push_back({"T_query_ref (refined)", PoseText(*entry.T_query_ref_refined)});
+        numbers.push_back({"refinement fitness", Optional(entry.fitness, "")});
+        numbers.push_back({"refinement RMSE", Optional(entry.rmse, " m")});
+        numbers.push_back({"ground-truth error", Optional(entry.gt_translation_error, " m") + ", " +
+                                                     Optional(entry.gt_rotation_error, " deg", 2)});
+        if (entry.gt_true_positive) numbers.push_back({"ground truth", *entry.gt_true_positive ? "true closure" : "false closure"});
+    }
+    if (T_odometry) numbers.push_back({"T_query_ref (odometry)", PoseText(*T_odometry)});
+    page.KeyValueTable(numbers);
+
+    const auto emit = [&](const std::string& suffix, const cv::Mat& image, const std::string& caption) {
+        const std::string name = stem + suffix + ".png";
+        WritePng(report_dir / name, image);
+        ++result.images;
+        page.Figure(name, caption);
+        if (result.thumbnail.empty()) {
+            cv::Mat thumb;
+            const double scale = double(config.thumbnail_width) / image.cols;
+            cv::resize(image, thumb, cv::Size(), scale, scale, cv::INTER_AREA);
+            result.thumbnail = stem + "_thumb.png";
+            WritePng(report_dir / result.thumbnail, thumb);
+            ++result.images;
+        }
+    };
+    if (query_density && ref_density) {
+        page.Heading("Density images", 2);
+        emit("_matches", DrawDensityMatches(*query_density, *ref_density, c, config.density_pictures),
+             detected ? "ORB keypoints and matches (inliers green, outliers red)" : "density images and keypoints");
+        if (detected)
+            emit("_overlay", DrawDensityOverlay(*query_density, *ref_density, T_after, "after alignment", config.density_pictures),
+                 "overlay after alignment");
+        if (T_odometry)
+            emit("_overlay_odometry",
+                 DrawDensityOverlay(*query_density, *ref_density, *T_odometry, "odometry pose", config.density_pictures),
+                 "overlay at the odometry pose (before)");
+    }
+    if (query_map && ref_map) {
+        page.Heading("Local maps in 3D", 2);
+        if (T_odometry)
+            emit("_3d_before", RenderMapPair(query_map->points, ref_map->points, Eigen::Isometry3d(*T_odometry), "before (odometry)",
+                                             true, config.pair),
+                 "before alignment: odometry relative pose");
+        if (detected)
+            emit("_3d_after", RenderMapPair(query_map->points, ref_map->points, Eigen::Isometry3d(T_after), "after alignment",
+                                            true, config.pair),
+                 "after alignment");
+    }
+    if (result.images == 0) page.Paragraph("No map data available in this run: pictures cannot be drawn.");
+    result.page = report_dir / (stem + ".html");
+    WriteText(result.page, page.Finish());
+    return result;
+}
+
+}  // namespace revisit

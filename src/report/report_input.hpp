@@ -1,0 +1,93 @@
+#pragma once
+/// Everything the HTML report shows, filled by the pipeline from a run folder (issue 8). Plain data, no
+/// dependency on the optimization or evaluation modules; heavy data (maps) is fetched on demand by callbacks.
+#include "closures/closure.hpp"
+#include "closures/density_image.hpp"
+#include "closures/local_map.hpp"
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace revisit {
+
+/// Poses with timestamps; index i is scan i of the sequence (closures refer to scans by index).
+struct TimedTrajectory {
+    std::vector<double> timestamps;                  ///< [s]
+    std::vector<Eigen::Isometry3d> T_world_sensor;
+    bool Empty() const { return T_world_sensor.empty(); }
+};
+
+struct StageTiming {
+    std::string stage;
+    double seconds = 0.0;  ///< [s]
+};
+
+/// One detected closure and what became of it.
+struct ClosureEntry {
+    Closure closure;
+    bool accepted = false;
+    std::string reason;                      ///< why accepted or rejected (refinement / pose-graph gate)
+    std::optional<double> fitness;           ///< refinement fitness (e.g. inlier ratio of the ICP) [0..1]
+    std::optional<double> rmse;              ///< refinement residual [m]
+    std::optional<Eigen::Matrix4d> T_query_ref_refined;  ///< after refinement, when refined
+    std::optional<double> gt_translation_error;  ///< [m] against ground truth, when known
+    std::optional<double> gt_rotation_error;     ///< [deg]
+    std::optional<bool> gt_true_positive;        ///< ground truth says the two maps overlap
+};
+
+struct PrCurvePoint {
+    double threshold = 0.0;
+    double precision = 0.0;  ///< [0..1]
+    double recall = 0.0;     ///< [0..1]
+    double F1() const { return precision + recall > 0.0 ? 2.0 * precision * recall / (precision + recall) : 0.0; }
+};
+
+/// One evaluated method's precision-recall sweep; the max-F1 point is found by MaxF1 when not given.
+struct PrCurve {
+    std::string method;
+    std::vector<PrCurvePoint> points;
+    std::optional<PrCurvePoint> max_f1;
+};
+PrCurvePoint MaxF1(const PrCurve& curve);
+
+/// Absolute pose error over time [m].
+struct ErrorSeries {
+    std::vector<double> timestamps;  ///< [s]
+    std::vector<double> values;      ///< [m]
+};
+
+struct TextTable {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+
+struct ReportInput {
+    std::string title = "revisit report";
+    std::vector<std::string> dataset_summary;  ///< one line each (path, format, scans, duration, length...)
+    std::string config_text;                   ///< the run's configuration, shown verbatim
+    std::vector<std::pair<std::string, std::string>> counts;  ///< e.g. {"local maps", "46"}
+    std::vector<StageTiming> timings;
+
+    TimedTrajectory odometry;
+    TimedTrajectory corrected;
+    TimedTrajectory reference;  ///< ground truth, empty when unknown
+
+    std::vector<ClosureEntry> closures;
+    std::vector<PrCurve> pr_curves;
+    ErrorSeries ape_before;  ///< odometry against reference
+    ErrorSeries ape_after;   ///< corrected against reference
+    TextTable metrics;       ///< from the evaluation, already formatted
+
+    /// On-demand data (each may be empty: the pictures that need it are then left out).
+    std::function<std::optional<LocalMap>(int map_id)> load_local_map;
+    std::function<std::optional<DensityImage>(int map_id)> load_density_image;  ///< computed from the map if absent
+    /// ORB keypoints of a map's density image [pixels] (MapRecord::keypoints), drawn on `inspect --maps` pages.
+    std::function<std::vector<Eigen::Vector2f>(int map_id)> load_keypoints;
+    /// Corrected global map [m, world frame], already decimated to what a picture needs (~1-2 M points).
+    std::function<std::vector<Eigen::Vector3f>()> load_global_map;
+};
+
+}  // namespace revisit

@@ -1,0 +1,86 @@
+#include <cmath>
+#include <random>
+
+#include "sim/generators.hpp"
+#include "sim/objects.hpp"
+
+namespace revisit {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double Uniform(std::mt19937& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+}  // namespace
+
+World GenerateHighway(const HighwayConfig& config, std::uint64_t seed) {
+    std::mt19937 rng(static_cast<std::uint32_t>(seed * 2246822519u + 5u));
+    World world;
+    world.kind = "highway";
+    world.ground.amplitude = config.ground_amplitude;
+    world.ground.wavelength = 900.0;
+    world.lane_offset = 0.5 * config.road_half_width;
+    // A wobbly ring (sum of low harmonics), four ring nodes joined by two cross roads through a centre node.
+    const double a2 = Uniform(rng, -1.0, 1.0), a3 = Uniform(rng, -1.0, 1.0), p2 = Uniform(rng, 0, 2 * kPi),
+                 p3 = Uniform(rng, 0, 2 * kPi);
+    auto ring = [&](double theta) {
+        const double r = config.ring_radius *
+                         (1.0 + config.radius_variation * (0.6 * a2 * std::sin(2 * theta + p2) + 0.4 * a3 * std::sin(3 * theta + p3)));
+        return Eigen::Vector2d(r * std::cos(theta), r * std::sin(theta));
+    };
+    StreetGraph& graph = world.streets;
+    const int ring_nodes = 8;
+    for (int k = 0; k < ring_nodes; ++k) graph.nodes.push_back(ring(2 * kPi * k / ring_nodes));
+    graph.nodes.push_back(Eigen::Vector2d::Zero());
+    const int centre = ring_nodes;
+    for (int k = 0; k < ring_nodes; ++k) {
+        std::vector<Eigen::Vector2d> polyline;
+        for (int i = 0; i <= 40; ++i) polyline.push_back(ring(2 * kPi * (k + i / 40.0) / ring_nodes));
+        graph.AddEdge(k, (k + 1) % ring_nodes, polyline);
+    }
+    for (int k = 0; k < ring_nodes; k += 2) graph.AddEdge(k, centre);
+
+    for (const auto& edge : graph.edges) {
+        const double length = edge.length;
+        const double clear = 40.0;  // junctions stay open
+        for (int side = -1; side <= 1; side += 2) {
+            const auto rail = OffsetPolyline(edge.polyline, side * (config.road_half_width + 1.0));
+            for (double s = clear; s + 1.0 < length - clear; s += 20.0)
+                AddWall(PolylinePoint(rail, s), PolylinePoint(rail, std::min(s + 20.0, length - clear)), 0.3, 0.35, 0.8,
+                        Material::kMetal, world);
+            const auto verge = OffsetPolyline(edge.polyline, side * (config.road_half_width + 2.5));
+            Eigen::Vector2d tangent;
+            if (side > 0)
+                for (double s = clear; s < length - clear; s += config.lamp_spacing) {
+                    const Eigen::Vector2d base = PolylinePoint(verge, s, &tangent);
+                    AddLamp(base, -Eigen::Vector2d(tangent.y(), -tangent.x()), rng, world);
+                }
+            for (double s = clear + Uniform(rng, 0, config.sign_spacing); s < length - clear;
+                 s += config.sign_spacing * Uniform(rng, 0.7, 1.3)) {
+                const Eigen::Vector2d base = PolylinePoint(verge, s, &tangent);
+                const Eigen::Vector2d normal(-tangent.y(), tangent.x());
+                const double g = world.ground.Height(base.x(), base.y());
+                world.cylinders.push_back({base - 1.5 * tangent, 0.08, g - 0.5, g + 5.5, Material::kMetal});
+                world.cylinders.push_back({base + 1.5 * tangent, 0.08, g - 0.5, g + 5.5, Material::kMetal});
+                AddStandingBox(base, std::atan2(normal.y(), normal.x()) + kPi / 2, Eigen::Vector2d(2.0, 0.05), 3.5, 5.5,
+                               Material::kMetal, world);
+            }
+            for (double s = clear; s < length - clear; s += 25.0)
+                if (Uniform(rng, 0, 1) < config.tree_probability)
+                    AddTree(PolylinePoint(OffsetPolyline(edge.polyline, side * (config.road_half_width + Uniform(rng, 6, 20))), s),
+                            rng, world);
+        }
+        for (std::size_t i = 1; i < edge.polyline.size(); ++i)
+            world.roads.push_back({edge.polyline[i - 1], edge.polyline[i], config.road_half_width});
+    }
+    for (int c = 0; c < config.moving_cars; ++c) {
+        const auto& edge = graph.edges[rng() % graph.edges.size()];
+        MovingCar car;
+        car.path = OffsetPolyline(edge.polyline, world.lane_offset);
+        car.speed = Uniform(rng, 18.0, 30.0);
+        car.phase = Uniform(rng, 0.0, 2.0 * edge.length);
+        world.moving_cars.push_back(car);
+    }
+    return world;
+}
+
+}  // namespace revisit

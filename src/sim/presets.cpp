@@ -1,0 +1,144 @@
+#include "sim/presets.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace revisit {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+SimConfig City(const std::string& name, SensorConfig sensor) {
+    SimConfig config;
+    config.name = name;
+    config.world = WorldKind::kCity;
+    config.sensor = std::move(sensor);
+    config.route.length = 2500.0;
+    config.route.revisits = 7;  // merged and junction returns aside, >= 5 distinct revisits for seeds 1-10
+    config.route.min_revisit_gap = 250.0;
+    config.motion.cruise_speed = 12.0;
+    return config;
+}
+
+/// A small campus: narrow paths, low buildings, trees, no traffic; walked with a handheld sensor.
+SimConfig Campus(const std::string& name, SensorConfig sensor) {
+    SimConfig config;
+    config.name = name;
+    config.world = WorldKind::kCity;
+    config.city.blocks_x = 3;
+    config.city.blocks_y = 3;
+    config.city.block_size = 45.0;
+    config.city.node_jitter = 4.0;
+    config.city.curve_amplitude = 3.0;
+    config.city.road_half_width = 2.5;
+    config.city.sidewalk = 1.0;
+    config.city.min_building_height = 4.0;
+    config.city.max_building_height = 15.0;
+    config.city.lamp_spacing_min = 12.0;
+    config.city.lamp_spacing_max = 20.0;
+    config.city.tree_street_fraction = 0.6;
+    config.city.parked_car_density = 0.0;
+    config.city.moving_cars = 0;
+    config.city.removed_fraction = 0.0;
+    config.moving_cars = false;
+    config.route.length = 300.0;
+    config.route.revisits = 3;
+    config.route.opposite_fraction = 0.5;
+    config.route.min_revisit_gap = 60.0;
+    config.route.explore_radius = 120.0;
+    config.route.corner_radius = 2.0;
+    config.motion.cruise_speed = 1.4;
+    config.motion.start_speed = 1.0;
+    config.motion.max_lateral_accel = 0.5;
+    config.motion.handheld = true;
+    config.motion.mount_height = 1.4;
+    config.motion.mount_pitch = 20.0 * kDegree;  // held tilted towards the ground in front
+    config.sensor = std::move(sensor);
+    config.sensor.motion_distortion = true;
+    config.odometry.speed_scale_bias = 0.02;
+    return config;
+}
+
+SimConfig Indoor(const std::string& name, SensorConfig sensor) {
+    SimConfig config;
+    config.name = name;
+    config.world = WorldKind::kIndoor;
+    config.moving_cars = false;
+    config.route.length = 300.0;
+    config.route.revisits = 5;
+    config.route.opposite_fraction = 0.4;
+    config.route.min_revisit_gap = 40.0;
+    config.route.corner_radius = 1.0;
+    config.motion.cruise_speed = 1.0;
+    config.motion.start_speed = 0.5;
+    config.motion.max_lateral_accel = 0.5;
+    config.motion.mount_height = 0.4;
+    config.sensor = std::move(sensor);
+    config.odometry.speed_scale_bias = 0.02;
+    config.odometry.yaw_rate_bias = 0.005;
+    return config;
+}
+
+}  // namespace
+
+std::vector<std::string> SimPresetNames() {
+    return {"demo",          "city-64",         "city-16",       "city-128",     "city-livox",
+            "highway-64",    "campus-handheld", "campus-vlp16",  "indoor-2d-180", "indoor-2d-360",
+            "indoor-depth",  "tiny"};
+}
+
+SimConfig SimPreset(const std::string& name) {
+    if (name == "demo" || name == "city-64") return City(name, Hdl64Sensor());
+    if (name == "city-16") return City(name, Vlp16Sensor());
+    if (name == "city-128") return City(name, Os128Sensor());
+    if (name == "city-livox") {
+        SimConfig config = City(name, LivoxAviaSensor());
+        config.sensor.motion_distortion = true;
+        return config;
+    }
+    if (name == "highway-64") {
+        SimConfig config;
+        config.name = name;
+        config.world = WorldKind::kHighway;
+        config.sensor = Hdl64Sensor();
+        config.route.length = 6000.0;
+        config.route.revisits = 4;
+        config.route.opposite_fraction = 0.5;
+        config.route.min_revisit_gap = 1000.0;
+        config.route.explore_radius = 2000.0;
+        config.motion.cruise_speed = 25.0;
+        config.motion.max_lateral_accel = 3.0;
+        return config;
+    }
+    if (name == "campus-handheld") return Campus(name, LivoxAviaSensor());
+    if (name == "campus-vlp16") return Campus(name, Vlp16Sensor());
+    if (name == "indoor-2d-180") return Indoor(name, PlanarLaserSensor(180.0));
+    if (name == "indoor-2d-360") return Indoor(name, PlanarLaserSensor(360.0));
+    if (name == "indoor-depth") {
+        SimConfig config = Indoor(name, DepthCameraSensor());
+        config.sensor.rate = 10.0;  // 300k points per frame: 10 Hz rather than 30 keeps sequences smaller
+        config.motion.mount_height = 1.0;
+        config.route.length = 60.0;
+        config.route.revisits = 2;
+        config.route.opposite_fraction = 0.5;
+        return config;
+    }
+    if (name == "tiny") {
+        // For tests and smoke runs: a 3x3 city, 16 beams, about 800 m with revisits.
+        SimConfig config = City(name, Vlp16Sensor());
+        config.city.blocks_x = 3;
+        config.city.blocks_y = 3;
+        config.city.moving_cars = 5;
+        config.route.length = 900.0;
+        config.route.revisits = 3;
+        config.route.min_revisit_gap = 200.0;
+        config.sensor.azimuth_steps = 900;
+        return config;
+    }
+    std::string known;
+    for (const auto& n : SimPresetNames()) known += (known.empty() ? "" : ", ") + n;
+    throw ConfigError("sim.preset: unknown preset '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace revisit

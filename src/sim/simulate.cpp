@@ -1,0 +1,192 @@
+#include "sim/simulate.hpp"
+
+#include <tbb/task_group.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/trajectory_io.hpp"
+#include "sim/scan_simulator.hpp"
+
+namespace revisit {
+namespace {
+
+const char* WorldName(WorldKind kind) {
+    switch (kind) {
+        case WorldKind::kCity: return "city";
+        case WorldKind::kHighway: return "highway";
+        case WorldKind::kIndoor: return "indoor";
+        case WorldKind::kAroundTrajectory: return "around_trajectory";
+    }
+    return "unknown";
+}
+
+const char* SensorName(SensorType type) {
+    switch (type) {
+        case SensorType::kSpinning: return "spinning";
+        case SensorType::kRosette: return "rosette";
+        case SensorType::kPlanar: return "planar";
+        case SensorType::kDepthCamera: return "depth_camera";
+    }
+    return "unknown";
+}
+
+/// Revisit detection scaled to the scene: indoor and handheld loops are short.
+RevisitConfig RevisitsFor(const SimConfig& config) {
+    RevisitConfig revisit;
+    if (config.world == WorldKind::kIndoor || config.motion.handheld) {
+        revisit.radius = 3.0;
+        revisit.min_gap = 30.0;
+        revisit.min_length = 5.0;
+    }
+    return revisit;
+}
+
+}  // namespace
+
+SimPlan PlanSimulation(const SimConfig& config) {
+    SimPlan plan;
+    std::vector<Eigen::Vector2d> path;
+    switch (config.world) {
+        case WorldKind::kCity: plan.world = GenerateCity(config.city, config.seed); break;
+        case WorldKind::kHighway: plan.world = GenerateHighway(config.highway, config.seed); break;
+        case WorldKind::kIndoor: plan.world = GenerateIndoor(config.indoor, config.seed); break;
+        case WorldKind::kAroundTrajectory: {
+            if (config.trajectory_file.empty()) throw ConfigError("sim.trajectory_file: required for an around_trajectory world");
+            const Trajectory given = ReadPoses(config.trajectory_file);
+            plan.world = GenerateAroundTrajectory(given.poses, config.around, config.seed);
+            path = RoutePath(plan.world.streets, {0, 1}, 0.0, 2.0);
+            break;
+        }
+    }
+    if (!config.moving_cars) plan.world.moving_cars.clear();
+    if (path.empty()) {
+        const auto nodes = PlanRoute(plan.world.streets, config.route, config.seed);
+        path = RoutePath(plan.world.streets, nodes, plan.world.lane_offset, config.route.corner_radius);
+    }
+    MotionConfig motion = config.motion;
+    motion.rate = config.sensor.rate;  // one pose per sweep: the sweep start is the previous pose
+    plan.trajectory = DrivePath(path, plan.world.ground, motion, config.seed);
+    if (config.max_scans > 0 && plan.trajectory.size() > config.max_scans) {
+        plan.trajectory.poses.resize(config.max_scans);
+        plan.trajectory.timestamps.resize(config.max_scans);
+    }
+    if (config.odometry.enabled) plan.odometry = SimulateOdometry(plan.trajectory, config.odometry, config.seed);
+    plan.revisits = FindRevisits(plan.trajectory.poses, RevisitsFor(config));
+    return plan;
+}
+
+SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, const SimProgress& progress) {
+    const SimPlan plan = PlanSimulation(config);
+    const RayCaster caster(plan.world);
+    SimSummary summary;
+    summary.scans = plan.trajectory.size();
+    summary.length = PathLength(plan.trajectory.poses);
+    summary.duration = plan.trajectory.has_timestamps() ? plan.trajectory.timestamps.back() : 0.0;
+    summary.primitives = plan.world.NumPrimitives();
+    summary.revisits = plan.revisits.size();
+    for (const auto& r : plan.revisits) summary.opposite_revisits += r.opposite ? 1 : 0;
+    const bool fixed_pattern = config.sensor.type != SensorType::kRosette;
+    std::vector<SensorRay> rays;
+    if (fixed_pattern) rays = MakeRays(config.sensor, 0);
+    tbb::task_group writing;
+    Scan pending;
+    struct WaitOnExit {  // a task_group must not be destroyed with a write in flight (exceptions)
+        tbb::task_group& group;
+        ~WaitOnExit() {
+            try {
+                group.wait();
+            } catch (...) {
+            }
+        }
+    } wait_on_exit{writing};
+    for (std::size_t k = 0; k < plan.trajectory.size(); ++k) {
+        if (!fixed_pattern) rays = MakeRays(config.sensor, k);
+        SweepInput sweep;
+        sweep.index = k;
+        sweep.timestamp = plan.trajectory.timestamps[k];
+        sweep.T_world_sensor = plan.trajectory.poses[k];
+        sweep.T_world_sensor_start = plan.trajectory.poses[k > 0 ? k - 1 : 0];
+        const Eigen::Vector2d here = sweep.T_world_sensor.translation().head<2>();
+        for (const auto& car : plan.world.moving_cars) {
+            OrientedBox box = car.BoxAt(sweep.timestamp, plan.world.ground);
+            if ((box.center - here).norm() < config.sensor.max_range + 5.0) sweep.dynamic_boxes.push_back(box);
+        }
+        Scan scan = SimulateScan(caster, config.sensor, rays, sweep, config.seed);
+        if (!plan.odometry.empty()) scan.T_odom_sensor = plan.odometry[k];
+        summary.points += scan.points.size();
+        // Write scan k while scan k+1 is cast: one write in flight, files still written in order.
+        writing.wait();
+        if (progress && k > 0) progress(k, plan.trajectory.size());
+        pending = std::move(scan);
+        writing.run([&writer, &pending] { writer.Write(pending); });
+    }
+    writing.wait();
+    if (progress && !plan.trajectory.empty()) progress(plan.trajectory.size(), plan.trajectory.size());
+    writer.Finish();
+    return summary;
+}
+
+std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
+    std::ostringstream out;
+    out.precision(10);
+    const auto& s = config.sensor;
+    out << "# revisit simulate: everything needed to regenerate this sequence\n"
+        << "preset: " << config.name << "\n"
+        << "seed: " << config.seed << "\n"
+        << "world: " << WorldName(config.world) << "\n";
+    if (config.world == WorldKind::kCity)
+        out << "city: {blocks_x: " << config.city.blocks_x << ", blocks_y: " << config.city.blocks_y
+            << ", block_size: " << config.city.block_size << ", road_half_width: " << config.city.road_half_width
+            << ", min_building_height: " << config.city.min_building_height
+            << ", max_building_height: " << config.city.max_building_height << ", moving_cars: " << config.city.moving_cars
+            << "}\n";
+    if (config.world == WorldKind::kHighway)
+        out << "highway: {ring_radius: " << config.highway.ring_radius << ", road_half_width: " << config.highway.road_half_width
+            << "}\n";
+    if (config.world == WorldKind::kIndoor)
+        out << "indoor: {rooms_x: " << config.indoor.rooms_x << ", rooms_y: " << config.indoor.rooms_y
+            << ", room_size: " << config.indoor.room_size << "}\n";
+    if (config.world == WorldKind::kAroundTrajectory) out << "trajectory_file: \"" << config.trajectory_file.string() << "\"\n";
+    out << "route: {length: " << config.route.length << ", revisits: " << config.route.revisits
+        << ", opposite_fraction: " << config.route.opposite_fraction << ", min_revisit_gap: " << config.route.min_revisit_gap
+        << "}\n"
+        << "motion: {rate: " << config.sensor.rate << ", cruise_speed: " << config.motion.cruise_speed
+        << ", mount_height: " << config.motion.mount_height << ", mount_pitch: " << config.motion.mount_pitch
+        << ", handheld: " << (config.motion.handheld ? "true" : "false") << "}\n"
+        << "sensor: {type: " << SensorName(s.type) << ", label: " << s.label << ", rate: " << s.rate
+        << ", beams: " << s.vertical_angles.size() << ", azimuth_steps: " << s.azimuth_steps
+        << ", min_range: " << s.min_range << ", max_range: " << s.max_range << ", range_noise: " << s.range_noise
+        << ", dropout: " << s.dropout << ", motion_distortion: " << (s.motion_distortion ? "true" : "false") << "}\n"
+        << "odometry_noise: {enabled: " << (config.odometry.enabled ? "true" : "false")
+        << ", speed_scale_bias: " << config.odometry.speed_scale_bias << ", yaw_rate_bias: " << config.odometry.yaw_rate_bias
+        << ", yaw_bias_random_walk: " << config.odometry.yaw_bias_random_walk << "}\n"
+        << "summary: {scans: " << summary.scans << ", points: " << summary.points << ", length_m: " << summary.length
+        << ", duration_s: " << summary.duration << ", primitives: " << summary.primitives
+        << ", revisits: " << summary.revisits << ", opposite_revisits: " << summary.opposite_revisits << "}\n";
+    return out.str();
+}
+
+SimSummary RunSimulation(const SimConfig& config, const std::filesystem::path& out, bool force,
+                         const SimProgress& progress) {
+    WriterOptions options;
+    if (config.sensor.type == SensorType::kPlanar) {
+        options.planar_as_range_scan = true;
+        options.planar_beams = config.sensor.planar_beams;
+        options.planar_aperture = config.sensor.planar_aperture;
+        options.planar_max_range = config.sensor.max_range;
+    }
+    options.write_odometry = config.odometry.enabled;
+    auto writer = CreateWriter(out, options, force);
+    const SimSummary summary = SimulateSequence(config, *writer, progress);
+    const std::string name = out.filename().string();
+    const bool rawlog = name.size() > 7 && (name.find(".rawlog") != std::string::npos);
+    const auto yaml = rawlog ? std::filesystem::path(out.string() + ".sim.yaml") : out / "sim.yaml";
+    std::ofstream file(yaml);
+    if (!file) throw DatasetError(yaml, "cannot write");
+    file << SimConfigYaml(config, summary);
+    return summary;
+}
+
+}  // namespace revisit

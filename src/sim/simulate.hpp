@@ -1,0 +1,68 @@
+#pragma once
+/// The simulator's entry points: a world, a route through it, a sensor; scans written to a dataset.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "io/writer.hpp"
+#include "sim/generators.hpp"
+#include "sim/odometry_noise.hpp"
+#include "sim/revisits.hpp"
+#include "sim/route.hpp"
+#include "sim/sensor.hpp"
+
+namespace revisit {
+
+enum class WorldKind { kCity, kHighway, kIndoor, kAroundTrajectory };
+
+struct SimConfig {
+    std::string name = "custom";       ///< preset name, written to sim.yaml
+    std::uint64_t seed = 1;            ///< every random choice derives from it
+    WorldKind world = WorldKind::kCity;
+    CityConfig city;
+    HighwayConfig highway;
+    IndoorConfig indoor;
+    AroundTrajectoryConfig around;
+    std::filesystem::path trajectory_file;  ///< kAroundTrajectory: KITTI or TUM poses to follow
+    RouteConfig route;
+    MotionConfig motion;
+    SensorConfig sensor;
+    OdometryNoiseConfig odometry;
+    bool moving_cars = true;
+    std::size_t max_scans = 0;         ///< 0: the whole route
+};
+
+/// World, trajectory and revisits of a configuration, before any ray is cast.
+struct SimPlan {
+    World world;
+    Trajectory trajectory;             ///< T_world_sensor at the scan time stamps
+    Poses odometry;                    ///< drifting prior, empty when disabled
+    std::vector<Revisit> revisits;     ///< found in `trajectory` with RevisitConfig defaults
+};
+
+struct SimSummary {
+    std::size_t scans = 0;
+    std::size_t points = 0;
+    double length = 0.0;               ///< [m]
+    double duration = 0.0;             ///< [s] of simulated time
+    std::size_t primitives = 0;
+    std::size_t revisits = 0;
+    std::size_t opposite_revisits = 0;
+};
+
+using SimProgress = std::function<void(std::size_t done, std::size_t total)>;
+
+/// Builds the world and plans the route (reads `trajectory_file` for kAroundTrajectory).
+SimPlan PlanSimulation(const SimConfig& config);
+/// Simulates every scan of the plan and hands it to `writer` (then calls Finish()).
+SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, const SimProgress& progress = {});
+/// `revisit simulate`: KITTI folder (or a rawlog when `out` ends in .rawlog/.rawlog.gz) plus sim.yaml
+/// with the preset, seed and parameters (next to a rawlog: <out>.sim.yaml).
+SimSummary RunSimulation(const SimConfig& config, const std::filesystem::path& out, bool force,
+                         const SimProgress& progress = {});
+
+/// The parameters as YAML text (hand-written: the core library does not link yaml-cpp).
+std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary);
+
+}  // namespace revisit

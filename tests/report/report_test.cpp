@@ -1,0 +1,217 @@
+#include <gtest/gtest.h>
+
+#include "render/palette.hpp"
+#include "report/plots.hpp"
+#include "report/report_writer.hpp"
+#include "report/svg_plot.hpp"
+#include "report/synthetic_report.hpp"
+#include "test_data.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <array>
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace revisit {
+namespace {
+
+std::string ReadText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+int CountColor(const cv::Mat& bgr, Rgb color, int tolerance = 12) {
+    cv::Mat mask;
+    cv::inRange(bgr, color.Bgr() - cv::Scalar::all(tolerance), color.Bgr() + cv::Scalar::all(tolerance), mask);
+    return cv::countNonZero(mask);
+}
+
+/// Every src="..." and href="..." of a page that is not an in-page anchor.
+std::vector<std::string> References(const std::string& html) {
+    std::vector<std::string> refs;
+    const std::regex attribute(R"((src|href)=\"([^\"]*)\")");
+    for (auto it = std::sregex_iterator(html.begin(), html.end(), attribute); it != std::sregex_iterator(); ++it) {
+        const std::string ref = (*it)[2];
+        if (!ref.empty() && ref[0] != '#') refs.push_back(ref);
+    }
+    return refs;
+}
+
+ReportInput SmallRun() {
+    SyntheticRunConfig config;
+    config.num_closures = 3;
+    config.reject_fraction = 0.0;
+    return MakeSyntheticRun(config);
+}
+
+ReportConfig SmallPictures() {
+    ReportConfig config;
+    config.overview.width = 640;
+    config.overview.height = 480;
+    config.pair.width = 480;
+    config.pair.height = 360;
+    return config;
+}
+
+TEST(SvgPlots, PrCurvesMarkTheMaxF1PointOfEveryMethod) {
+    PrCurve a{"a", {{0.1, 1.0, 0.2}, {0.2, 0.9, 0.6}, {0.3, 0.5, 0.9}}, std::nullopt};
+    PrCurve b{"b <&>", {{0.1, 0.8, 0.5}}, std::nullopt};
+    EXPECT_DOUBLE_EQ(MaxF1(a).recall, 0.6);  // F1 0.72 beats 0.333 and 0.643
+    const std::string svg = PrCurvesSvg({a, b});
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    std::size_t polylines = 0, circles = 0;
+    for (std::size_t p = svg.find("<polyline"); p != std::string::npos; p = svg.find("<polyline", p + 1)) ++polylines;
+    for (std::size_t p = svg.find("<circle"); p != std::string::npos; p = svg.find("<circle", p + 1)) ++circles;
+    EXPECT_EQ(polylines, 2u);
+    EXPECT_EQ(circles, 2u);
+    EXPECT_NE(svg.find("F1 0.720"), std::string::npos);
+    EXPECT_NE(svg.find("b &lt;&amp;&gt;"), std::string::npos);  // names are escaped
+    EXPECT_EQ(svg.find("b <&>"), std::string::npos);
+}
+
+TEST(SvgPlots, ApePlotUsesTheTrajectoryColours) {
+    const std::string svg = ApeOverTimeSvg({{0, 1, 2}, {0, 1, 2}}, {{0, 1, 2}, {0, 0.1, 0.1}});
+    EXPECT_NE(svg.find("#f07800"), std::string::npos);  // palette::kOdometry
+    EXPECT_NE(svg.find("#005ae6"), std::string::npos);  // palette::kCorrected
+}
+
+TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
+    test::TempDir dir;
+    const ReportInput input = SmallRun();
+    const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
+    EXPECT_EQ(stats.pages, 4);  // index + 3 closures
+    std::set<std::string> pages{"index.html"};
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        if (entry.path().extension() == ".html") pages.insert(entry.path().filename().string());
+    EXPECT_EQ(pages.size(), 4u);
+    int images = 0;
+    for (const auto& page : pages) {
+        const std::string html = ReadText(dir / page);
+        EXPECT_EQ(html.find("http://"), std::string::npos) << page;  // self-contained: no network
+        EXPECT_EQ(html.find("https://"), std::string::npos) << page;
+        EXPECT_EQ(html.find("<script"), std::string::npos) << page;
+        for (const auto& ref : References(html)) {
+            if (ref == "data:,") continue;  // the empty favicon
+            EXPECT_TRUE(std::filesystem::exists(dir / ref)) << page << " references missing " << ref;
+            images += ref.size() > 4 && (ref.substr(ref.size() - 4) == ".png" || ref.substr(ref.size() - 4) == ".svg");
+        }
+    }
+    EXPECT_GE(images, 3 * 5 + 2 + 4);  // 5 pictures + thumbnail per closure, 2 overviews, 4 plots
+
+    const cv::Mat top = cv::imread((dir / "overview_top.png").string());
+    ASSERT_FALSE(top.empty());
+    EXPECT_GT(CountColor(top, palette::kCorrected), 500);
+    EXPECT_GT(CountColor(top, palette::kOdometry), 500);
+    EXPECT_GT(CountColor(top, palette::kReference), 100);
+
+    // The overlay after alignment shows both maps in their own channels (query red, reference cyan), and mostly
+    // where they agree (white); at the drifted odometry pose most query structure has no partner.
+    const auto channel_counts = [](const std::filesystem::path& path) {
+        const cv::Mat image = cv::imread(path.string());
+        EXPECT_FALSE(image.empty()) << path;
+        const cv::Mat panel = image.rowRange(130, image.rows);  // below the 130 px legend header
+        cv::Mat query_only, ref_only, both;
+        cv::inRange(panel, cv::Scalar(0, 0, 100), cv::Scalar(0, 0, 255), query_only);
+        cv::inRange(panel, cv::Scalar(100, 100, 0), cv::Scalar(255, 255, 0), ref_only);
+        cv::inRange(panel, cv::Scalar(100, 100, 100), cv::Scalar(254, 254, 254), both);  // not the white margin
+        return std::array<int, 3>{cv::countNonZero(query_only), cv::countNonZero(ref_only), cv::countNonZero(both)};
+    };
+    const auto after = channel_counts(dir / "closure_0000_overlay.png");
+    const auto before = channel_counts(dir / "closure_0000_overlay_odometry.png");
+    EXPECT_GT(after[0], 50);
+    EXPECT_GT(after[1], 50);
+    const auto agreement = [](const std::array<int, 3>& c) { return double(c[2]) / std::max(1, c[0] + c[2]); };
+    EXPECT_GT(agreement(after), 0.7);
+    EXPECT_LT(agreement(before), 0.5);
+    std::cout << "overlay agreement after " << agreement(after) << ", before " << agreement(before) << "\n";
+
+    // Matches: inlier green and outlier red lines drawn.
+    const cv::Mat matches = cv::imread((dir / "closure_0000_matches.png").string());
+    EXPECT_GT(CountColor(matches, palette::kInlier, 30), 200);
+    EXPECT_GT(CountColor(matches, palette::kOutlier, 30), 100);
+
+    // 3D views: both map colours.
+    const cv::Mat after3d = cv::imread((dir / "closure_0000_3d_after.png").string());
+    EXPECT_GT(CountColor(after3d, palette::kQueryMap, 20), 500);
+    EXPECT_GT(CountColor(after3d, palette::kRefMap, 20), 500);
+}
+
+TEST(WriteReport, IsDeterministic) {
+    test::TempDir a, b;
+    const ReportInput input = SmallRun();
+    WriteReport(input, a.path(), SmallPictures());
+    WriteReport(input, b.path(), SmallPictures());
+    int compared = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(a.path())) {
+        const auto name = entry.path().filename();
+        EXPECT_EQ(ReadText(entry.path()), ReadText(b / name.string())) << name;
+        ++compared;
+    }
+    EXPECT_GT(compared, 20);
+}
+
+TEST(WriteReport, RunWithoutGroundTruthOrStoredMapsStillGivesValidPages) {
+    test::TempDir dir;
+    ReportInput input = SmallRun();
+    input.reference = {};
+    input.ape_before = {};
+    input.ape_after = {};
+    input.pr_curves.clear();
+    input.metrics = {};
+    input.load_local_map = nullptr;
+    input.load_density_image = nullptr;
+    input.load_global_map = nullptr;
+    const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
+    EXPECT_EQ(stats.pages, 4);
+    const std::string index = ReadText(dir / "index.html");
+    EXPECT_NE(index.find("No evaluation in this run"), std::string::npos);
+    EXPECT_EQ(index.find("precision_recall.svg"), std::string::npos);
+    EXPECT_NE(ReadText(dir / "closure_0000.html").find("No map data available"), std::string::npos);
+    for (const auto& page : {"index.html", "closure_0000.html", "closure_0002.html"})
+        for (const auto& ref : References(ReadText(dir / page))) {
+            if (ref == "data:,") continue;
+            EXPECT_TRUE(std::filesystem::exists(dir / ref)) << page << " references missing " << ref;
+        }
+    // The trajectories are still drawn.
+    const cv::Mat top = cv::imread((dir / "overview_top.png").string());
+    EXPECT_GT(CountColor(top, palette::kOdometry), 300);
+    EXPECT_LT(CountColor(top, palette::kReference), 50);  // only the legend would show it, and it is left out
+}
+
+TEST(WriteClosurePage, RejectsAnUnknownClosure) {
+    test::TempDir dir;
+    EXPECT_THROW(WriteClosurePage(SmallRun(), 3, dir.path(), SmallPictures()), std::out_of_range);
+}
+
+TEST(WriteMapPairPage, ShowsAnyTwoMapsAtTheirOdometryPose) {
+    test::TempDir dir;
+    ReportInput input = SmallRun();
+    input.load_keypoints = [](int) {
+        std::vector<Eigen::Vector2f> keypoints;
+        for (int i = 0; i < 40; ++i) keypoints.emplace_back(10.f + 3.f * i, 20.f + 2.f * i);
+        return keypoints;
+    };
+    const auto page = WriteMapPairPage(input, 12, 3, dir.path(), SmallPictures());
+    const std::string html = ReadText(page);
+    EXPECT_NE(html.find("not a detected closure"), std::string::npos);
+    for (const auto& ref : References(html)) {
+        if (ref == "data:,") continue;
+        EXPECT_TRUE(std::filesystem::exists(dir / ref)) << ref;
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir / "maps_12_3_3d_before.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "maps_12_3_3d_after.png"));  // no estimate to show
+    // The stored keypoints of both maps are drawn (80 small circles), with no match lines.
+    const cv::Mat pair = cv::imread((dir / "maps_12_3_matches.png").string());
+    EXPECT_GT(CountColor(pair, palette::kKeypoint, 40), 80 * 8);
+    EXPECT_LT(CountColor(pair, palette::kInlier, 40), 300);  // the legend sample only
+}
+
+}  // namespace
+}  // namespace revisit
