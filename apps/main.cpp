@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     revisit::app::AddReportCommands(root, action);
     revisit::app::AddConvertCommand(root, action);
     revisit::app::AddConfigCommand(root, action);
+    revisit::app::AddBenchCommand(root, action);
     try {
         root.parse(argc, argv);
         return action ? action() : 0;

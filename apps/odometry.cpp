@@ -22,9 +22,7 @@ struct OdometryOptions {
 int RunOdometry(const OdometryOptions& o) {
     const PipelineConfig config = ResolveConfig(o.config);
     const auto threads = LimitThreads(o.config.threads);
-    ReaderOptions reader_options;
-    reader_options.sensor_label = config.input.sensor_label;
-    reader_options.kitti_vertical_correction = config.input.kitti_vertical_correction;
+    const ReaderOptions reader_options = MakeReaderOptions(config.input);
     auto reader = OpenDataset(o.dataset, reader_options);
     PrepareOutputFolder(o.out, o.force);
     LidarOdometry odometry(config.odometry);

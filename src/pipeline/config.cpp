@@ -8,11 +8,13 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("input.kitti_vertical_correction", &c.input.kitti_vertical_correction, "",
           "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (METHOD.md 1)");
     s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all)");
+    s.Add("input.laser_aperture_deg", &c.input.laser_aperture_deg, "deg",
+          "2D lasers: field of view replacing the file's (0: the file's; radish intel.rawlog needs 180)", Range{0, 360});
     auto& o = c.odometry;
     s.Add("odometry.max_range", &o.max_range, "m", "points beyond are dropped; map radius (KISS-ICP paper-era: 100)", Range{1, 1000});
     s.Add("odometry.min_range", &o.min_range, "m", "points closer are dropped (KISS-ICP paper-era: 5)", Range{0, 100});
     s.Add("odometry.voxel_size", &o.voxel_size, "m", "map voxel; 0 = max_range / 100 (KISS-ICP)", Range{0, 10});
-    s.Add("odometry.max_points_per_voxel", &o.max_points_per_voxel, "", "map points per voxel (KISS-ICP: 20)", Range{1, 1000});
+    s.Add("odometry.max_points_per_voxel", &o.max_points_per_voxel, "", "map points per voxel (KISS-ICP: 20)", Range{1, 100});
     s.Add("odometry.initial_threshold", &o.initial_threshold, "m", "adaptive threshold before motion (KISS-ICP: 2.0)", Range{0.01, 100});
     s.Add("odometry.min_motion_th", &o.min_motion_th, "m", "a frame updates the threshold only above this motion (KISS-ICP: 0.1)", Range{0, 10});
     s.AddEnum("odometry.kernel", &o.kernel, {{"paper", IcpKernel::kPaper}, {"later", IcpKernel::kLater}},
@@ -109,11 +111,12 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
               {{"none", RobustLossKind::kNone}, {"cauchy", RobustLossKind::kCauchy}, {"dcs", RobustLossKind::kDynamicCovarianceScaling}},
               "robust loss of closure edges");
     s.Add("graph.loop_loss_scale", &c.graph.loop_loss_scale, "", "kernel scale on chi^2", Range{1e-6, 1e9});
-    s.Add("graph.anneal", &c.graph.anneal, "", "graduated robustness (use with dcs)");
+    s.Add("graph.anneal", &c.graph.anneal, "", "graduated robustness: wide kernel first, so true closures far from drifted odometry still pull");
     s.Add("graph.max_iterations", &c.graph.max_iterations, "", "Ceres iterations per stage", Range{1, 100000});
     auto& n = c.graph_noise;
-    s.Add("graph.odometry_sigma_translation", &n.odometry_sigma_translation, "m", "odometry edge noise", Range{1e-6, 100});
-    s.Add("graph.odometry_sigma_rotation", &n.odometry_sigma_rotation, "rad", "odometry edge noise", Range{1e-6, 10});
+    s.Add("graph.odometry_translation_per_m", &n.odometry_translation_per_m, "m/m",
+          "odometry edge sigma per metre travelled (1%; cautious: a robust loss rejects true closures if too small)", Range{1e-6, 1});
+    s.Add("graph.odometry_rotation_per_m", &n.odometry_rotation_per_m, "rad/m", "odometry rotation sigma per metre (3e-4)", Range{1e-8, 1});
     s.Add("graph.closure_information_from_registration", &n.closure_information_from_registration, "", "closure information from the 3D registration");
     s.Add("graph.closure_sigma_translation", &n.closure_sigma_translation, "m", "fixed closure noise (METHOD.md 6: 1e3 x identity)", Range{1e-6, 100});
     s.Add("graph.closure_sigma_rotation", &n.closure_sigma_rotation, "rad", "fixed closure noise", Range{1e-6, 10});
@@ -160,6 +163,14 @@ PipelineConfig LoadConfig(const std::vector<std::string>& files, const std::vect
     for (const auto& file : files) schema.ApplyFile(file);
     for (const auto& assignment : overrides) schema.ApplyOverride(assignment);
     return config;
+}
+
+ReaderOptions MakeReaderOptions(const InputConfig& input) {
+    ReaderOptions options;
+    options.sensor_label = input.sensor_label;
+    options.kitti_vertical_correction = input.kitti_vertical_correction;
+    options.laser_aperture = input.laser_aperture_deg * M_PI / 180.0;
+    return options;
 }
 
 std::string DumpConfig(const PipelineConfig& config) {

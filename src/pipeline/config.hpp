@@ -9,6 +9,7 @@
 #include "evaluation/ground_truth_closures.hpp"
 #include "evaluation/predicted_closures.hpp"
 #include "evaluation/scan_context.hpp"
+#include "io/reader.hpp"
 #include "odometry/odometry_config.hpp"
 #include "optimization/pose_graph.hpp"
 #include "optimization/refinement.hpp"
@@ -19,11 +20,12 @@ namespace revisit {
 struct InputConfig {
     bool kitti_vertical_correction = false;  ///< KITTI HDL-64E: rotate points by 0.205 deg (configs/kitti.yaml)
     std::string sensor_label;                ///< rawlogs: only this sensor ("" = all)
+    double laser_aperture_deg = 0.0;         ///< [deg] 2D lasers: replaces the file's aperture (0: keep)
 };
 
 struct GraphNoiseConfig {
-    double odometry_sigma_translation = 0.1;  ///< [m] per odometry edge between map origins
-    double odometry_sigma_rotation = 0.01;    ///< [rad]
+    double odometry_translation_per_m = 0.01;  ///< [m/m] odometry edge sigma per metre between map origins (1%)
+    double odometry_rotation_per_m = 3e-4;     ///< [rad/m] (~1.7 deg per 100 m)
     bool closure_information_from_registration = false;  ///< else a fixed closure sigma below
     double closure_sigma_translation = 0.03;  ///< [m] ~ 1e3 x identity information (METHOD.md 6)
     double closure_sigma_rotation = 0.03;     ///< [rad]
@@ -39,13 +41,22 @@ struct OutputConfig {
     bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
 };
 
+/// The pose graph's defaults for the pipeline: graduated robustness on, because closures arrive far
+/// from drifted odometry (measured on the simulated demo city: APE 56.8 m -> 49.7 m without, 20.7 m
+/// with, the same 17 correct closures).
+inline PoseGraphConfig PipelineGraphConfig() {
+    PoseGraphConfig config;
+    config.anneal = true;
+    return config;
+}
+
 struct PipelineConfig {
     InputConfig input;
     OdometryConfig odometry;
     LocalMapConfig local_map;
     ClosureDetectorConfig detector;
     RefinementConfig refinement;
-    PoseGraphConfig graph;
+    PoseGraphConfig graph = PipelineGraphConfig();
     GraphNoiseConfig graph_noise;
     GtClosureConfig ground_truth;
     PredictedClosureConfig predicted;
@@ -58,6 +69,9 @@ ConfigSchema MakeConfigSchema(PipelineConfig& config);
 
 /// Defaults, then each file in order, then `key=value` overrides. Throws ConfigError.
 PipelineConfig LoadConfig(const std::vector<std::string>& files, const std::vector<std::string>& overrides);
+
+/// Reader options from the input section.
+ReaderOptions MakeReaderOptions(const InputConfig& input);
 
 /// The fully resolved configuration as commented YAML (what a run writes to config.yaml).
 std::string DumpConfig(const PipelineConfig& config);

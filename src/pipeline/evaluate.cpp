@@ -28,9 +28,7 @@ DatasetPass ReadDatasetPass(const RunState& state, const RunOptions& options, co
     const bool need_scan_context = config.output.scan_context;
     if (cached) pass.ground_truth = *cached;
     if (cached && !need_scan_context) return pass;
-    ReaderOptions reader_options;
-    reader_options.sensor_label = config.input.sensor_label;
-    reader_options.kitti_vertical_correction = config.input.kitti_vertical_correction;
+    const ReaderOptions reader_options = MakeReaderOptions(config.input);
     auto reader = OpenDataset(options.dataset, reader_options);
     GroundTruthBuilder builder(state.reference, config.ground_truth);
     Progress progress(log, Progress::DetectMode(options.quiet), state.reference.size(), "scans (evaluation)");

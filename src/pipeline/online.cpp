@@ -2,7 +2,8 @@
 
 #include <chrono>
 
-#include "optimization/point_grid.hpp"
+#include "core/voxel.hpp"
+#include "optimization/trajectory_correction.hpp"
 
 namespace revisit {
 namespace {
@@ -158,10 +159,12 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
     record.accepted = record.refinement.accepted;
     record.reason = record.refinement.reason;
     if (record.accepted) {
+        // The refinement measures T_query_ref (the reference origin seen from the query map), and its
+        // information is expressed for that direction: the edge goes from the query node.
         PoseGraphEdge edge;
-        edge.from = closure.ref_id;
-        edge.to = closure.query_id;
-        edge.T_from_to = record.refinement.T_query_ref.inverse();  // T_ref_query: the query origin in the reference map
+        edge.from = closure.query_id;
+        edge.to = closure.ref_id;
+        edge.T_from_to = record.refinement.T_query_ref;
         edge.is_loop = true;
         const auto& noise = config_.graph_noise;
         edge.information = noise.closure_information_from_registration && record.refinement.information.trace() > 0
@@ -182,7 +185,16 @@ void ClosurePipeline::Optimize(bool final) {
     }
     const auto start = std::chrono::steady_clock::now();
     const auto& noise = config_.graph_noise;
-    auto edges = OdometryEdges(nodes_, DiagonalInformation(noise.odometry_sigma_translation, noise.odometry_sigma_rotation));
+    // Odometry uncertainty grows with the distance between map origins (OdometryInformation).
+    std::vector<PoseGraphEdge> edges;
+    OdometryNoise odometry_noise;
+    odometry_noise.translation_per_m = noise.odometry_translation_per_m;
+    odometry_noise.rotation_per_m = noise.odometry_rotation_per_m;
+    for (std::size_t i = 1; i < nodes_.size(); ++i) {
+        const Eigen::Isometry3d T_prev_next = nodes_[i - 1].inverse() * nodes_[i];
+        const double travel = maps_[i].travel_start - maps_[i - 1].travel_start;
+        edges.push_back({static_cast<int>(i - 1), static_cast<int>(i), T_prev_next, OdometryInformation(travel, odometry_noise), false});
+    }
     const std::size_t num_odometry = edges.size();
     edges.insert(edges.end(), loop_edges_.begin(), loop_edges_.end());
     PoseGraphConfig graph = config_.graph;
@@ -197,14 +209,7 @@ void ClosurePipeline::Optimize(bool final) {
 }
 
 Poses ClosurePipeline::CorrectTrajectory(const Poses& T_world_sensor, const std::vector<int>& map_of_scan) const {
-    Poses corrected(T_world_sensor.size());
-    for (std::size_t i = 0; i < T_world_sensor.size(); ++i) {
-        const int m = i < map_of_scan.size() ? map_of_scan[i] : -1;
-        corrected[i] = m < 0 || m >= static_cast<int>(nodes_.size())
-                           ? T_world_sensor[i]
-                           : corrected_nodes_[m] * nodes_[m].inverse() * T_world_sensor[i];
-    }
-    return corrected;
+    return revisit::CorrectTrajectory(T_world_sensor, map_of_scan, nodes_, corrected_nodes_, {});
 }
 
 }  // namespace revisit

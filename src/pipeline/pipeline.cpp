@@ -105,9 +105,7 @@ RunOptions ReadRunOptions(const RunFolder& run) {
 
 RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log) {
     const auto run_start = Clock::now();
-    ReaderOptions reader_options;
-    reader_options.sensor_label = config.input.sensor_label;
-    reader_options.kitti_vertical_correction = config.input.kitti_vertical_correction;
+    const ReaderOptions reader_options = MakeReaderOptions(config.input);
     // Open every input before creating the run folder: bad input fails without leaving anything behind.
     auto reader = OpenDataset(options.dataset, reader_options);
     const Trajectory pose_file = options.poses == PoseSource::kFile ? ReadPoses(options.poses_file) : Trajectory{};
@@ -194,11 +192,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
 
     state.maps = pipeline.maps();
     state.closures = pipeline.closures();
-    state.map_of_scan.assign(state.odometry.size(), -1);
-    for (const auto& m : state.maps) {
-        for (std::size_t s = m.first_scan; s <= m.last_scan && s < state.map_of_scan.size(); ++s) state.map_of_scan[s] = m.id;
-    }
-    state.corrected = pipeline.CorrectTrajectory(state.odometry, state.map_of_scan);
+    state.map_of_scan = MapOfScan(state.maps, state.odometry.size());
+    state.corrected = state.maps.empty() ? state.odometry : pipeline.CorrectTrajectory(state.odometry, state.map_of_scan);
     state.timings = pipeline.timings();
     for (const auto& [stage, timer] : timings) state.timings[stage] = timer;
 

@@ -94,7 +94,15 @@ ReportInput LoadReportInput(const RunFolder& run) {
     }
     input.odometry = Timed(state, state.odometry);
     input.corrected = Timed(state, state.corrected);
-    if (state.has_reference()) input.reference = Timed(state, state.reference);
+    if (state.has_reference()) {
+        // Ground truth lives in its own world frame: show it where the APE alignment puts it, so the
+        // pictures compare what the numbers compare (SE(3) Umeyama onto the corrected trajectory).
+        const Eigen::Isometry3d T_ref_est = AlignUmeyama(state.corrected, state.reference);
+        Poses aligned;
+        aligned.reserve(state.reference.size());
+        for (const auto& T : state.reference) aligned.push_back(T_ref_est.inverse() * T);
+        input.reference = Timed(state, aligned);
+    }
     for (const auto& record : state.closures) {
         if (record.method != "density") continue;
         ClosureEntry entry;

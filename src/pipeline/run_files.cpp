@@ -8,11 +8,18 @@
 
 #include "core/error.hpp"
 #include "io/trajectory_io.hpp"
+#include "optimization/trajectory_correction.hpp"
 #include "pipeline/csv.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+std::vector<int> MapOfScan(const std::vector<MapRecordSummary>& maps, std::size_t num_scans) {
+    std::vector<std::size_t> first_scans;
+    for (const auto& m : maps) first_scans.push_back(m.first_scan);
+    return first_scans.empty() ? std::vector<int>(num_scans, -1) : NodeOfScan(first_scans, num_scans);
+}
 
 std::size_t RunState::NumAccepted() const {
     std::size_t n = 0;
@@ -179,7 +186,6 @@ RunState ReadRunState(const RunFolder& run) {
     state.corrected = ReadKittiPoses(run.corrected_kitti()).poses;
     if (fs::exists(run.reference_tum())) state.reference = ReadTumPoses(run.reference_tum()).poses;
     const auto maps = CsvTable::Read(run.local_maps_csv());
-    state.map_of_scan.assign(state.odometry.size(), -1);
     for (std::size_t i = 0; i < maps.size(); ++i) {
         MapRecordSummary m;
         m.id = static_cast<int>(maps.Integer(i, "id"));
@@ -194,9 +200,9 @@ RunState ReadRunState(const RunFolder& run) {
         m.T_world_map = maps.Pose(i, "T_world_map");
         m.T_world_map_corrected = maps.Pose(i, "T_world_map_corrected");
         m.T_ground_map = maps.Pose(i, "T_ground_map");
-        for (std::size_t s = m.first_scan; s <= m.last_scan && s < state.map_of_scan.size(); ++s) state.map_of_scan[s] = m.id;
         state.maps.push_back(m);
     }
+    state.map_of_scan = MapOfScan(state.maps, state.odometry.size());
     const auto closures = CsvTable::Read(run.closures_csv());
     for (std::size_t i = 0; i < closures.size(); ++i) {
         ClosureRecord r;

@@ -63,4 +63,7 @@ struct RunState {
     std::size_t NumAccepted() const;
 };
 
+/// The map (index into `maps`, sorted by first scan, contiguous ranges) of every scan; -1 without maps.
+std::vector<int> MapOfScan(const std::vector<MapRecordSummary>& maps, std::size_t num_scans);
+
 }  // namespace revisit

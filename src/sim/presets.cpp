@@ -52,6 +52,7 @@ SimConfig Campus(const std::string& name, SensorConfig sensor) {
     config.motion.start_speed = 1.0;
     config.motion.max_lateral_accel = 0.5;
     config.motion.handheld = true;
+    config.motion.min_turn_radius = 0.0;  // walking: the path as given, no car steering limits
     config.motion.mount_height = 1.4;
     config.motion.mount_pitch = 20.0 * kDegree;  // held tilted towards the ground in front
     config.sensor = std::move(sensor);
@@ -74,6 +75,7 @@ SimConfig Indoor(const std::string& name, SensorConfig sensor) {
     config.motion.start_speed = 0.5;
     config.motion.max_lateral_accel = 0.5;
     config.motion.mount_height = 0.4;
+    config.motion.min_turn_radius = 0.0;  // a robot turning on the spot in corridors, no car steering limits
     config.sensor = std::move(sensor);
     config.odometry.speed_scale_bias = 0.02;
     config.odometry.yaw_rate_bias = 0.005;

@@ -6,8 +6,6 @@
 #include <queue>
 #include <random>
 
-#include "core/se3.hpp"
-
 namespace revisit {
 namespace {
 
@@ -275,67 +273,6 @@ std::vector<Eigen::Vector2d> RoutePath(const StreetGraph& graph, const std::vect
         dense.swap(smooth);
     }
     return dense;
-}
-
-Trajectory DrivePath(const std::vector<Eigen::Vector2d>& path, const Ground& ground, const MotionConfig& config,
-                     std::uint64_t seed) {
-    Trajectory trajectory;
-    const std::size_t n = path.size();
-    if (n < 2) return trajectory;
-    std::vector<double> s(n, 0.0);
-    for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (path[i] - path[i - 1]).norm();
-    // Speed limit from curvature (heading change over +-3 vertices), then acceleration limits.
-    std::vector<double> speed(n, config.cruise_speed);
-    for (std::size_t i = 3; i + 3 < n; ++i) {
-        const Eigen::Vector2d a = path[i] - path[i - 3];
-        const Eigen::Vector2d b = path[i + 3] - path[i];
-        const double turn = std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)));
-        const double arc = std::max(0.5 * (a.norm() + b.norm()), 1e-6);
-        const double curvature = turn / arc;
-        if (curvature > 1e-6) speed[i] = std::min(speed[i], std::sqrt(config.max_lateral_accel / curvature));
-    }
-    speed[0] = std::min(speed[0], config.start_speed);
-    for (std::size_t i = 1; i < n; ++i)
-        speed[i] = std::min(speed[i], std::sqrt(speed[i - 1] * speed[i - 1] + 2.0 * config.max_accel * (s[i] - s[i - 1])));
-    for (std::size_t i = n - 1; i-- > 0;)
-        speed[i] = std::min(speed[i], std::sqrt(speed[i + 1] * speed[i + 1] + 2.0 * config.max_decel * (s[i + 1] - s[i])));
-    std::vector<double> time(n, 0.0);
-    for (std::size_t i = 1; i < n; ++i)
-        time[i] = time[i - 1] + (s[i] - s[i - 1]) / std::max(0.5 * (speed[i] + speed[i - 1]), 0.2);
-
-    std::mt19937 rng(static_cast<std::uint32_t>(seed * 9176u + 3u));
-    std::uniform_real_distribution<double> phase(0.0, kTwoPi);
-    const double phase_pitch = phase(rng), phase_roll = phase(rng), phase_yaw = phase(rng);
-    const Eigen::Isometry3d T_vehicle_mount =
-        PoseFromXYZRPY(0.0, 0.0, config.mount_height, config.mount_roll, config.mount_pitch, config.mount_yaw);
-    std::size_t i = 1;
-    for (std::size_t k = 0;; ++k) {
-        const double t = k / config.rate;
-        if (t > time.back()) break;
-        while (i + 1 < n && time[i] < t) ++i;
-        const double f = std::clamp((t - time[i - 1]) / std::max(time[i] - time[i - 1], 1e-9), 0.0, 1.0);
-        const Eigen::Vector2d p = path[i - 1] + f * (path[i] - path[i - 1]);
-        // Heading from a chord of a few metres, so the 1 m resampling does not jitter it.
-        const std::size_t ahead = std::min(n - 1, i + 2), behind = i >= 3 ? i - 3 : 0;
-        const Eigen::Vector2d direction = (path[ahead] - path[behind]).normalized();
-        const double yaw = std::atan2(direction.y(), direction.x());
-        const Eigen::Vector2d g = ground.Gradient(p.x(), p.y());
-        const double slope_forward = g.dot(direction);
-        const double slope_left = g.dot(Eigen::Vector2d(-direction.y(), direction.x()));
-        const Eigen::Isometry3d T_world_vehicle =
-            PoseFromXYZRPY(p.x(), p.y(), ground.Height(p.x(), p.y()), std::atan(slope_left), -std::atan(slope_forward), yaw);
-        Eigen::Isometry3d T_vehicle_sensor = T_vehicle_mount;
-        if (config.handheld) {
-            const double w = kTwoPi * config.step_frequency;
-            const Eigen::Isometry3d sway = PoseFromXYZRPY(
-                0.0, 0.0, config.bob_amplitude * std::sin(w * t), config.sway_roll * std::sin(0.5 * w * t + phase_roll),
-                config.sway_pitch * std::sin(0.23 * w * t + phase_pitch), config.sway_yaw * std::sin(0.11 * w * t + phase_yaw));
-            T_vehicle_sensor = T_vehicle_mount * sway;
-        }
-        trajectory.timestamps.push_back(t);
-        trajectory.poses.push_back(T_world_vehicle * T_vehicle_sensor);
-    }
-    return trajectory;
 }
 
 }  // namespace revisit

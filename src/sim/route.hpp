@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/trajectory.hpp"
+#include "sim/drive.hpp"
 #include "sim/world.hpp"
 
 namespace revisit {
@@ -28,29 +29,5 @@ std::vector<int> PlanRoute(const StreetGraph& graph, const RouteConfig& config, 
 /// every `spacing` [m], corners rounded over about `corner_radius` [m].
 std::vector<Eigen::Vector2d> RoutePath(const StreetGraph& graph, const std::vector<int>& nodes, double lane_offset,
                                        double corner_radius = 6.0, double spacing = 1.0);
-
-struct MotionConfig {
-    double rate = 10.0;                ///< [Hz] poses per second (PlanSimulation uses the sensor's rate)
-    double cruise_speed = 10.0;        ///< [m/s]
-    double max_lateral_accel = 2.0;    ///< [m/s^2] sets the speed in turns
-    double max_accel = 1.5;            ///< [m/s^2]
-    double max_decel = 2.5;            ///< [m/s^2]
-    double start_speed = 3.0;          ///< [m/s]
-    double mount_height = 1.73;        ///< [m] sensor above the ground (KITTI Velodyne: 1.73)
-    double mount_roll = 0.0;           ///< [rad]
-    double mount_pitch = 0.0;          ///< [rad] positive tilts the sensor's x axis down
-    double mount_yaw = 0.0;            ///< [rad]
-    bool handheld = false;             ///< add walking sway and bob to the mount
-    double sway_pitch = 0.14;          ///< [rad] amplitude (about 8 degrees)
-    double sway_roll = 0.10;           ///< [rad] amplitude
-    double sway_yaw = 0.08;            ///< [rad] amplitude
-    double step_frequency = 1.8;       ///< [Hz] walking bob
-    double bob_amplitude = 0.03;       ///< [m]
-};
-
-/// Sensor poses (T_world_sensor) and time stamps at `rate` along the path; the vehicle follows
-/// the ground's slope (pitch and roll from its gradient). Sway phases come from `seed`.
-Trajectory DrivePath(const std::vector<Eigen::Vector2d>& path, const Ground& ground, const MotionConfig& config,
-                     std::uint64_t seed);
 
 }  // namespace revisit

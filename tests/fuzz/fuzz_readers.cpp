@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -30,7 +31,11 @@ std::filesystem::path WriteInput(const char* extension, const std::uint8_t* data
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 1) return 0;
     static const char* const kExtensions[] = {".bin", ".pcd", ".ply", ".rawlog", ".txt"};
-    const int format = data[0] % 5;
+    // REVISIT_FUZZ_NO_RAWLOG=1 leaves MRPT's deserializer out, whose allocations on corrupt sizes
+    // (a known MRPT limitation) otherwise dominate the findings.
+    static const bool skip_rawlog = std::getenv("REVISIT_FUZZ_NO_RAWLOG") != nullptr;
+    int format = data[0] % 5;
+    if (skip_rawlog && format == 3) format = 4;
     const auto file = WriteInput(kExtensions[format], data + 1, size - 1);
     try {
         switch (format) {

@@ -1,0 +1,40 @@
+#pragma once
+/// The case groups of the suites (internal to the benchmark module). Each appends its figures to
+/// `out` and, when its data is missing, a reason to `skipped`.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "benchmark/fixtures.hpp"
+#include "benchmark/measure.hpp"
+#include "benchmark/suite.hpp"
+
+namespace revisit {
+
+struct CaseContext {
+    SuiteScale scale;
+    std::filesystem::path data_dir;     ///< empty when real data is absent
+    std::filesystem::path scratch_dir;  ///< exists, removed after the suite
+    FixtureCache* fixtures = nullptr;
+    std::vector<Measurement>* out = nullptr;
+    std::vector<std::string>* skipped = nullptr;
+
+    void Add(Measurement m, const std::string& note) const {
+        m.note = note;
+        out->push_back(std::move(m));
+    }
+    void Skip(const std::string& reason) const { skipped->push_back(reason); }
+};
+
+void ReaderCases(const CaseContext& c);
+void OdometryCases(const CaseContext& c);
+void LocalMapCases(const CaseContext& c);
+void ClosureStageCases(const CaseContext& c);
+void TreeCases(const CaseContext& c);
+void RefinementCases(const CaseContext& c);
+void PoseGraphCases(const CaseContext& c);
+void GroundTruthCases(const CaseContext& c);
+void ReportCases(const CaseContext& c);
+void EndToEndCases(const CaseContext& c);
+
+}  // namespace revisit

@@ -1,0 +1,81 @@
+/// Black-box tests of `revisit run` and friends, as a user runs them.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "cli.hpp"
+#include "pipeline/run_files.hpp"
+#include "sim_dataset.hpp"
+
+namespace revisit {
+namespace {
+namespace fs = std::filesystem;
+using test::Quote;
+using test::RunCli;
+
+TEST(CliRun, EveryCommandHasHelpWithExamples) {
+    for (const char* command : {"run", "demo", "simulate", "odometry", "eval", "report", "inspect", "config", "info", "convert", "bench"}) {
+        const auto help = RunCli(std::string(command) + " --help");
+        EXPECT_EQ(help.exit_code, 0) << command;
+        EXPECT_NE(help.output.find("Example"), std::string::npos) << command << ":\n" << help.output;
+    }
+}
+
+TEST(CliRun, MissingDatasetFailsWithoutCreatingTheRunFolder) {
+    test::TempDir dir;
+    const auto result = RunCli("run /nonexistent/seq --out " + Quote((dir / "run").string()));
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_NE(result.output.find("/nonexistent/seq: no such file or folder"), std::string::npos) << result.output;
+    EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+TEST(CliRun, BadConfigNamesTheKey) {
+    const auto result = RunCli("run " + Quote(test::TinySimDataset().string()) + " --set density.resolutoin=0.3");
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_NE(result.output.find("did you mean 'density.resolution'"), std::string::npos) << result.output;
+    EXPECT_EQ(RunCli("run x --config no-such-preset").exit_code, 1);
+}
+
+TEST(CliRun, RefusesANonEmptyRunFolderUnlessForced) {
+    test::TempDir dir;
+    const auto out = dir / "run";
+    fs::create_directories(out);
+    std::ofstream(out / "notes.txt") << "mine";
+    const std::string command = "run " + Quote(test::TinySimDataset().string()) + " --to 60 --quiet --set output.write_report=false --out " + Quote(out.string());
+    const auto refused = RunCli(command);
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_NE(refused.output.find("--force"), std::string::npos) << refused.output;
+    EXPECT_FALSE(fs::exists(out / "run.json"));
+    const auto forced = RunCli(command + " --force");
+    EXPECT_EQ(forced.exit_code, 0) << forced.output;
+    EXPECT_TRUE(fs::exists(out / "notes.txt"));
+    EXPECT_EQ(ReadRunState(RunFolder::Open(out)).odometry.size(), 61u);
+}
+
+TEST(CliRun, InterruptedRunLeavesAValidPartialFolder) {
+    test::TempDir dir;
+    const auto out = dir / "run";
+    // SIGINT after 2 s: the run stops reading, writes what it has and exits with 130.
+    const std::string command = std::string("timeout --preserve-status -s INT 2 \"") + REVISIT_CLI + "\" run " +
+                                Quote(test::TinySimDataset().string()) + " --quiet --out " + Quote(out.string()) + " 2>&1";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    const RunState state = ReadRunState(RunFolder::Open(out));
+    EXPECT_FALSE(state.complete);
+    EXPECT_GT(state.odometry.size(), 0u);
+    EXPECT_LT(state.odometry.size(), 1600u);
+    EXPECT_EQ(state.corrected.size(), state.odometry.size());
+}
+
+TEST(CliRun, ConfigPrintsTheResolvedParameters) {
+    const auto result = RunCli("config --config indoor2d --set density.resolution=0.25");
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_NE(result.output.find("planar: true"), std::string::npos);
+    EXPECT_NE(result.output.find("resolution: 0.25"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace revisit

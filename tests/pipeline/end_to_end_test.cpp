@@ -1,0 +1,92 @@
+/// The whole chain on a simulated drive with a revisit and on a real 2D laser log.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "closures/database_io.hpp"
+#include "io/cloud_files.hpp"
+#include "io/trajectory_io.hpp"
+#include "pipeline/evaluate.hpp"
+#include "pipeline/pipeline.hpp"
+#include "pipeline/report_builder.hpp"
+#include "pipeline/run_files.hpp"
+#include "sim_dataset.hpp"
+
+namespace revisit {
+namespace {
+namespace fs = std::filesystem;
+
+/// Every file of the run folder parses with the project's own readers.
+void ExpectParseableRunFolder(const RunFolder& run, const PipelineConfig& config, const RunState& written) {
+    const RunState read = ReadRunState(run);
+    EXPECT_EQ(read.odometry.size(), written.odometry.size());
+    EXPECT_EQ(read.maps.size(), written.maps.size());
+    EXPECT_EQ(read.closures.size(), written.closures.size());
+    EXPECT_EQ(read.NumAccepted(), written.NumAccepted());
+    EXPECT_EQ(ReadKittiPoses(run.corrected_kitti()).size(), written.corrected.size());
+    EXPECT_EQ(ReadTumPoses(run.odometry_tum()).size(), written.odometry.size());
+    EXPECT_EQ(DumpConfig(LoadConfig({run.config().string()}, {})), DumpConfig(config));
+    EXPECT_GT(LoadPly(run.corrected_map()).points.size(), 1000u);
+    EXPECT_EQ(LoadDatabase(run.database(), config.detector).maps().size(), written.maps.size());
+    std::ifstream timings(run.timings_json());
+    EXPECT_FALSE(nlohmann::json::parse(timings, nullptr, false).is_discarded());
+}
+
+TEST(EndToEnd, SimulatedDriveFindsTheRevisitAndReducesApe) {
+    test::TempDir out;
+    RunOptions options;
+    options.dataset = test::TinySimDataset();
+    options.out = out / "run";
+    options.quiet = true;
+    const PipelineConfig config;
+    std::ostringstream log;
+    const RunState state = RunPipeline(options, config, log);
+    ASSERT_TRUE(state.complete);
+    EXPECT_EQ(state.odometry.size(), 1600u);
+    ASSERT_TRUE(state.has_reference());
+    EXPECT_GE(state.NumAccepted(), 1u) << log.str();
+    const RunFolder run(options.out);
+    ExpectParseableRunFolder(run, config, state);
+
+    const auto evaluation = EvaluateRun(run, state, options, config, log);
+    ASSERT_TRUE(evaluation);
+    const double before = evaluation->odometry.ape.errors.translation_stats.rmse;
+    const double after = evaluation->corrected.ape.errors.translation_stats.rmse;
+    EXPECT_LT(after, 0.8 * before) << "APE " << before << " m -> " << after << " m";
+    EXPECT_GT(evaluation->gt_scan_pairs, 0u);
+    ASSERT_FALSE(evaluation->methods.empty());
+    EXPECT_GT(evaluation->methods.front().best.precision, 0.5);
+    std::ifstream metrics(run.metrics_json());
+    const auto json = nlohmann::json::parse(metrics);
+    EXPECT_EQ(json["methods"][0]["method"], "density maps");
+    EXPECT_TRUE(fs::exists(run.root() / "pr_curve_density.csv"));
+
+    // The report draws from the run folder alone.
+    WriteRunReport(run, log);
+    EXPECT_TRUE(fs::exists(run.report_index()));
+    EXPECT_TRUE(fs::exists(run.report_dir() / "closure_0000.html"));
+}
+
+TEST(EndToEnd, RealRadishLogFindsClosures) {
+    const auto log_file = test::SharedData("radish/fr079.rawlog");
+    REVISIT_REQUIRE_DATA(log_file);
+    test::TempDir out;
+    RunOptions options;
+    options.dataset = log_file;
+    options.out = out / "run";
+    options.quiet = true;
+    options.to = 2999;  // the first 3000 scans revisit the corridors several times
+    const PipelineConfig config = LoadConfig({(fs::path(REVISIT_SOURCE_DIR) / "configs/indoor2d.yaml").string()}, {});
+    std::ostringstream log;
+    const RunState state = RunPipeline(options, config, log);
+    EXPECT_EQ(state.odometry.size(), 3000u);
+    EXPECT_FALSE(state.has_reference());
+    EXPECT_GE(state.NumAccepted(), 3u) << log.str();
+    ExpectParseableRunFolder(RunFolder(options.out), config, state);
+}
+
+}  // namespace
+}  // namespace revisit
