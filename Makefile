@@ -1,7 +1,6 @@
 # revisit: the commands a user runs. Each installs what it needs (Debian bookworm) and builds first.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
-DEMO_INPUT ?= /usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog
 
 .PHONY: all setup build test demo bench fuzz clean
 
@@ -18,9 +17,9 @@ build: setup
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
 
-## The built-in demo: describes MRPT's sample 2D loop log (the full chain replaces this as it lands).
+## The built-in demo: simulate a city drive with revisits (cached), run the whole chain, print the report.
 demo: build
-	$(BUILD_DIR)/revisit info "$(DEMO_INPUT)"
+	$(BUILD_DIR)/revisit demo
 
 ## Google Benchmark micro-benchmarks (not part of the tests).
 bench: build

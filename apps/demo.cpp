@@ -4,11 +4,8 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "pipeline/evaluate.hpp"
-#include "pipeline/pipeline.hpp"
 #include "pipeline/progress.hpp"
-#include "pipeline/report_builder.hpp"
-#include "pipeline/summary.hpp"
+#include "pipeline/run_and_report.hpp"
 #include "run_options.hpp"
 #include "sim/presets.hpp"
 #include "sim/simulate.hpp"
@@ -52,13 +49,8 @@ int RunDemo(const DemoOptions& o) {
     run_options.quiet = o.quiet;
     run_options.out = o.out.empty() ? RunFolder::DefaultPath("reports", "demo") : fs::path(o.out);
     run_options.force = !o.out.empty();
-    const RunState state = RunPipeline(run_options, config, std::cerr);
+    const RunState state = RunAndReport(run_options, config, std::cerr, std::cout);
     if (o.out.empty()) RunFolder::UpdateLatestLink(run_options.out);
-    const RunFolder run(run_options.out);
-    const auto evaluation = EvaluateRun(run, state, run_options, config, std::cerr);
-    WriteRunReport(run, std::cerr);
-    PrintRunSummary(std::cout, state, evaluation);
-    std::cout << "\nreport: " << run.report_index().string() << '\n';
     return state.complete ? 0 : 130;
 }
 }  // namespace

@@ -2,10 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "pipeline/evaluate.hpp"
-#include "pipeline/pipeline.hpp"
-#include "pipeline/report_builder.hpp"
-#include "pipeline/summary.hpp"
+#include "pipeline/run_and_report.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {
@@ -34,14 +31,8 @@ int RunRun(RunCommandOptions& o) {
     const bool default_out = o.out.empty();
     o.run.out = default_out ? RunFolder::DefaultPath("reports", o.run.dataset) : fs::path(o.out);
     if (!o.run.quiet) std::cerr << "revisit: " << o.run.dataset.string() << " -> " << o.run.out.string() << '\n';
-    const RunState state = RunPipeline(o.run, config, std::cerr);
+    const RunState state = RunAndReport(o.run, config, std::cerr, std::cout);
     if (default_out) RunFolder::UpdateLatestLink(o.run.out);
-    const RunFolder run(o.run.out);
-    const auto evaluation = EvaluateRun(run, state, o.run, config, std::cerr);
-    if (config.output.write_report) WriteRunReport(run, std::cerr);
-    PrintRunSummary(std::cout, state, evaluation);
-    std::cout << "\nrun folder: " << o.run.out.string() << '\n';
-    if (config.output.write_report) std::cout << "report:     " << run.report_index().string() << '\n';
     return state.complete ? 0 : 130;
 }
 }  // namespace

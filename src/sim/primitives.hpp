@@ -3,10 +3,25 @@
 /// Everything a street scene needs is a union of vertical prisms (oriented boxes),
 /// vertical cylinders (poles, trunks) and spheres (tree crowns); the ground is a height field.
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
 namespace revisit {
+
+/// Slab test of one axis (Kay-Kajiya): narrows [t_enter, t_exit] to where the ray is between lo and hi;
+/// false when the interval becomes empty or the ray is parallel and outside. Inline: the ray caster's hot loop.
+inline bool Slab(double origin, double direction, double lo, double hi, double& t_enter, double& t_exit) {
+    if (std::abs(direction) < 1e-12) return origin >= lo && origin <= hi;
+    const double inv = 1.0 / direction;
+    double t0 = (lo - origin) * inv;
+    double t1 = (hi - origin) * inv;
+    if (t0 > t1) std::swap(t0, t1);
+    t_enter = std::max(t_enter, t0);
+    t_exit = std::min(t_exit, t1);
+    return t_enter <= t_exit;
+}
 
 /// Surface type: sets the simulated reflectivity (intensity) of a hit.
 enum class Material : std::uint8_t { kGround, kRoad, kBuilding, kGlass, kVegetation, kMetal, kCar, kWall, kFurniture };

@@ -8,18 +8,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Slab interval of one axis; false when the ray is parallel and outside.
-inline bool Slab(double origin, double direction, double lo, double hi, double& t_enter, double& t_exit) {
-    if (std::abs(direction) < 1e-12) return origin >= lo && origin <= hi;
-    const double inv = 1.0 / direction;
-    double t0 = (lo - origin) * inv;
-    double t1 = (hi - origin) * inv;
-    if (t0 > t1) std::swap(t0, t1);
-    t_enter = std::max(t_enter, t0);
-    t_exit = std::min(t_exit, t1);
-    return t_enter <= t_exit;
-}
-
 }  // namespace
 
 RayCaster::RayCaster(const World& world, const RayCasterConfig& config) : world_(world), config_(config) {

@@ -1,0 +1,26 @@
+#include "pipeline/run_and_report.hpp"
+
+#include "pipeline/evaluate.hpp"
+#include "pipeline/report_builder.hpp"
+#include "pipeline/summary.hpp"
+
+namespace revisit {
+
+RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, std::ostream& log, std::ostream& out) {
+    const RunState state = RunPipeline(options, config, log);
+    const RunFolder run(options.out);
+    std::optional<RunEvaluation> evaluation;
+    if (state.complete) {
+        evaluation = EvaluateRun(run, state, options, config, log);
+        if (config.output.write_report) WriteRunReport(run, log);
+    } else {
+        log << "skipped evaluation and report; finish them with `revisit eval " << run.root().string()
+            << "` and `revisit report " << run.root().string() << "`\n";
+    }
+    PrintRunSummary(out, state, evaluation);
+    out << "\nrun folder: " << run.root().string() << '\n';
+    if (state.complete && config.output.write_report) out << "report:     " << run.report_index().string() << '\n';
+    return state;
+}
+
+}  // namespace revisit
