@@ -19,10 +19,9 @@ struct OdometryConfig {
     double initial_threshold = 2.0;  ///< [m] sigma before any motion was seen
     double min_motion_th = 0.1;      ///< [m] a frame updates sigma only when its model error exceeds this (KISS-ICP code)
     // ICP.
-    /// Later by default: starting from rest on the simulated demo city, the paper-era sigma/3 kernel
-    /// stays stuck (9.4 m of 100.6 m travelled over the first 120 scans), sigma follows (100.4 m);
-    /// both give the same KITTI result (frame 15 at 11.71 / 11.72 m).
-    IcpKernel kernel = IcpKernel::kLater;
+    /// Paper-era by default (METHOD.md). On the simulated demo city each kernel stalls once: sigma/3
+    /// over the first ~100 scans from rest, sigma around scan 2886 (see the issue notes).
+    IcpKernel kernel = IcpKernel::kPaper;
     int max_iterations = 500;        ///< Gauss-Newton iterations per frame
     double convergence = 1e-4;       ///< stop when |dx| of an update is below this [m, rad]
     int min_correspondences = 20;    ///< fewer: the frame is degenerate, keep the prediction

@@ -185,9 +185,9 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         read_start = Clock::now();
     }
     state.complete = !InterruptRequested();
-    pipeline.Finish();
+    for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
-                                               std::to_string(pipeline.closures().size()));
+                                               std::to_string(accepted));
     if (!reference_complete) state.reference.clear();
 
     state.maps = pipeline.maps();

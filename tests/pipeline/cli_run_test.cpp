@@ -79,3 +79,25 @@ TEST(CliRun, ConfigPrintsTheResolvedParameters) {
 
 }  // namespace
 }  // namespace revisit
+
+namespace revisit {
+namespace {
+TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
+    test::TempDir dir;
+    const auto out = (dir / "run").string();
+    const auto run = test::RunCli("run " + test::Quote(test::TinySimDataset().string()) +
+                                  " --to 300 --quiet --set output.write_report=false --out " + test::Quote(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto report = test::RunCli("report " + test::Quote(out));
+    EXPECT_EQ(report.exit_code, 0) << report.output;
+    EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "index.html"));
+    const auto pair = test::RunCli("inspect " + test::Quote(out) + " --maps 1 0");
+    EXPECT_EQ(pair.exit_code, 0) << pair.output;
+    EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "maps_1_0.html"));
+    const auto missing = test::RunCli("inspect " + test::Quote(out) + " --closure 9999");
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.output.find("no closure 9999"), std::string::npos) << missing.output;
+    EXPECT_EQ(test::RunCli("report " + test::Quote((dir / "nothing").string())).exit_code, 1);
+}
+}  // namespace
+}  // namespace revisit
