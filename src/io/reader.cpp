@@ -5,15 +5,10 @@
 #include "core/error.hpp"
 #include "io/folder_reader.hpp"
 #include "io/rawlog_reader.hpp"
+#include "io/writer.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
-
-namespace {
-bool EndsWith(const std::string& text, const std::string& suffix) {
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-}  // namespace
 
 std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& options) {
     if (path.empty()) throw DatasetError(path, "no dataset path given");
@@ -21,8 +16,7 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status)) throw DatasetError(path, "no such file or folder");
     if (fs::is_regular_file(status)) {
-        const std::string name = path.filename().string();
-        if (EndsWith(name, ".rawlog") || EndsWith(name, ".rawlog.gz") || EndsWith(name, ".gz")) {
+        if (HasRawlogExtension(path) || path.extension() == ".gz") {
             return OpenRawlog(path, options);
         }
         throw DatasetError(path, "unknown dataset format: expected a .rawlog file or a folder (KITTI velodyne/, .pcd, .ply)");

@@ -53,19 +53,22 @@ class KittiWriter final : public DatasetWriter {
     bool finished_ = false;
 };
 
-bool EndsWith(const std::string& text, const std::string& suffix) {
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 std::unique_ptr<DatasetWriter> CreateKittiWriter(const fs::path& folder, bool force) {
     return std::make_unique<KittiWriter>(folder, force);
 }
 
-std::unique_ptr<DatasetWriter> CreateWriter(const fs::path& path, const WriterOptions& options, bool force) {
+bool HasRawlogExtension(const fs::path& path) {
     const std::string name = path.filename().string();
-    if (EndsWith(name, ".rawlog") || EndsWith(name, ".rawlog.gz")) return CreateRawlogWriter(path, options, force);
+    const auto ends_with = [&name](const std::string& suffix) {
+        return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    return ends_with(".rawlog") || ends_with(".rawlog.gz");
+}
+
+std::unique_ptr<DatasetWriter> CreateWriter(const fs::path& path, const WriterOptions& options, bool force) {
+    if (HasRawlogExtension(path)) return CreateRawlogWriter(path, options, force);
     return CreateKittiWriter(path, force);
 }
 

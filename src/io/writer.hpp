@@ -36,6 +36,9 @@ std::unique_ptr<DatasetWriter> CreateKittiWriter(const std::filesystem::path& fo
 std::unique_ptr<DatasetWriter> CreateRawlogWriter(const std::filesystem::path& file,
                                                   const WriterOptions& options = {}, bool force = false);
 
+/// True for names ending in .rawlog or .rawlog.gz (what CreateWriter and OpenDataset treat as rawlogs).
+bool HasRawlogExtension(const std::filesystem::path& path);
+
 /// Picks the writer from the path: a name ending in .rawlog or .rawlog.gz, else a KITTI folder.
 std::unique_ptr<DatasetWriter> CreateWriter(const std::filesystem::path& path, const WriterOptions& options = {},
                                             bool force = false);
