@@ -43,7 +43,10 @@ int RunDemo(const DemoOptions& o) {
     } else {
         std::cerr << "revisit demo: using the cached sequence " << data.string() << '\n';
     }
-    const PipelineConfig config = ResolveConfig(o.config);
+    // Simulated worlds need the finer odometry voxels of configs/sim.yaml unless the user chose.
+    ConfigOptions config_options = o.config;
+    if (config_options.configs.empty()) config_options.configs.push_back("sim");
+    const PipelineConfig config = ResolveConfig(config_options);
     RunOptions run_options;
     run_options.dataset = data;
     run_options.quiet = o.quiet;
@@ -61,6 +64,7 @@ void AddDemoCommand(CLI::App& root, Action& action) {
     cmd->footer(
         "The first run simulates the sequence into ~/.cache/revisit (about a minute); later runs reuse it.\n"
         "Then: odometry, closures, pose graph, evaluation against the simulator's ground truth, report.\n"
+        "Without --config it uses the 'sim' preset (finer odometry voxels for simulated worlds).\n"
         "Examples:\n"
         "  revisit demo\n"
         "  revisit demo --preset city-livox --config livox");
