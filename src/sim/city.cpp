@@ -253,14 +253,7 @@ World GenerateCity(const CityConfig& config, std::uint64_t seed) {
 
     for (const auto& edge : world.streets.edges) FurnishStreet(edge, config, ring, rng, world);
 
-    for (int c = 0; c < config.moving_cars && !world.streets.edges.empty(); ++c) {
-        const auto& edge = world.streets.edges[rng() % world.streets.edges.size()];
-        MovingCar car;
-        car.path = OffsetPolyline(edge.polyline, world.lane_offset);
-        car.speed = Uniform(rng, 5.0, 12.0);
-        car.phase = Uniform(rng, 0.0, 2.0 * edge.length);
-        world.moving_cars.push_back(car);
-    }
+    AddMovingCars(config.moving_cars, 5.0, 12.0, rng, world);
     return world;
 }
 

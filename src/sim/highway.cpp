@@ -72,14 +72,7 @@ World GenerateHighway(const HighwayConfig& config, std::uint64_t seed) {
         for (std::size_t i = 1; i < edge.polyline.size(); ++i)
             world.roads.push_back({edge.polyline[i - 1], edge.polyline[i], config.road_half_width});
     }
-    for (int c = 0; c < config.moving_cars; ++c) {
-        const auto& edge = graph.edges[rng() % graph.edges.size()];
-        MovingCar car;
-        car.path = OffsetPolyline(edge.polyline, world.lane_offset);
-        car.speed = Uniform(rng, 18.0, 30.0);
-        car.phase = Uniform(rng, 0.0, 2.0 * edge.length);
-        world.moving_cars.push_back(car);
-    }
+    AddMovingCars(config.moving_cars, 18.0, 30.0, rng, world);
     return world;
 }
 

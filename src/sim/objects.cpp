@@ -152,4 +152,15 @@ void AddStandingBox(const Eigen::Vector2d& center, double yaw, const Eigen::Vect
     world.boxes.push_back(box);
 }
 
+void AddMovingCars(int count, double min_speed, double max_speed, std::mt19937& rng, World& world) {
+    for (int c = 0; c < count && !world.streets.edges.empty(); ++c) {
+        const auto& edge = world.streets.edges[rng() % world.streets.edges.size()];
+        MovingCar car;
+        car.path = OffsetPolyline(edge.polyline, world.lane_offset);
+        car.speed = Uniform(rng, min_speed, max_speed);
+        car.phase = Uniform(rng, 0.0, 2.0 * edge.length);
+        world.moving_cars.push_back(car);
+    }
+}
+
 }  // namespace revisit

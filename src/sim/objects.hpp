@@ -26,6 +26,8 @@ void AddBuilding(const BuildingSpec& spec, std::mt19937& rng, World& world);
 void AddLamp(const Eigen::Vector2d& base, const Eigen::Vector2d& towards_road, std::mt19937& rng, World& world);
 /// Trunk plus one or two crown spheres.
 void AddTree(const Eigen::Vector2d& base, std::mt19937& rng, World& world);
+/// `count` cars driving the lanes of random street edges at speeds in [min_speed, max_speed] [m/s].
+void AddMovingCars(int count, double min_speed, double max_speed, std::mt19937& rng, World& world);
 /// Parked car box; present only between `from` and `until` [s].
 void AddParkedCar(const Eigen::Vector2d& center, double yaw, float from, float until, World& world);
 /// Thin wall (fence, guard rail, room wall) from a to b.
