@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
 
 namespace revisit {
 namespace {
@@ -74,6 +75,13 @@ DensityImage ComputeDensityImage(const std::vector<Eigen::Vector3f>& points_in_l
         }
     }
     return result;
+}
+
+std::vector<std::uint8_t> EncodeDensityPng(const cv::Mat& image) {
+    std::vector<std::uint8_t> png;
+    cv::imencode(".png", image, png, {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE});
+    png.shrink_to_fit();
+    return png;
 }
 
 }  // namespace revisit

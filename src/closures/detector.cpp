@@ -31,6 +31,7 @@ ClosureDetectorConfig ClosureDetectorConfig::Later() {
     config.selection = CandidateSelection::kAllAboveMin;
     config.min_matches = 3;
     config.min_inliers = 6;
+    config.ransac.sampling = RansacSampling::kRandom;
     config.ransac.max_trials = 688;  // ceil(log(0.001) / log(1 - 0.1^2))
     config.ransac.weighted_sampling = false;
     config.ransac.refit_inliers = true;
@@ -46,8 +47,6 @@ ClosureDetectorConfig ClosureDetectorConfig::Robust(double skip_recent_travel_m)
     config.min_matches = 10;
     config.skip_recent_travel = skip_recent_travel_m;
     config.ransac.refit_inliers = true;
-    config.ransac.max_trials = 2000;
-    config.ransac.weighted_sampling = false;
     return config;
 }
 
@@ -113,8 +112,7 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     record.rows = features.density.image.rows;
     record.cols = features.density.image.cols;
     record.keypoints = std::move(features.features.keypoints);
-    if (config_.store_images) cv::imencode(".png", features.density.image, record.image_png, {cv::IMWRITE_PNG_COMPRESSION, 1});
-    record.image_png.shrink_to_fit();
+    if (config_.store_images) record.image_png = EncodeDensityPng(features.density.image);
     stats_.num_keypoints = int(record.keypoints.size());
 
     auto start = Clock::now();

@@ -29,7 +29,7 @@ Features DetectOrb(const cv::Mat& image, const FeatureConfig& config, int fast_t
     return features;
 }
 
-void DropSelfSimilar(Features& features, int distance) {
+REVISIT_POPCNT_CLONES void DropSelfSimilar(Features& features, int distance) {
     const std::size_t n = features.descriptors.size();
     std::vector<bool> keep(n, true);
     for (std::size_t i = 0; i < n; ++i) {

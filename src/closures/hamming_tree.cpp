@@ -25,25 +25,45 @@ const std::vector<TreeEntry>& HammingTree::LeafOf(const Descriptor& descriptor) 
     return nodes_[Descend(descriptor, nullptr)].entries;
 }
 
+namespace {
+
+/// Best match per map of one query descriptor in one leaf. Leaf entries are in insertion order, hence
+/// grouped by map id (maps are added in order): one pass keeps the best per map; ties go to the earlier
+/// keypoint. This loop is where matching spends its time, so it gets the popcount clone.
+REVISIT_POPCNT_CLONES void ScanLeaf(const std::vector<TreeEntry>& entries, const Descriptor& query, std::int32_t q,
+                                    int max_distance, std::vector<TreeMatch>& found) {
+    for (const auto& entry : entries) {
+        const int distance = HammingDistance(query, entry.descriptor);
+        if (distance >= max_distance) continue;
+        if (!found.empty() && found.back().map_id == entry.map_id) {
+            if (distance < found.back().distance) found.back() = {q, entry.map_id, entry.keypoint, distance};
+        } else {
+            found.push_back({q, entry.map_id, entry.keypoint, distance});
+        }
+    }
+}
+
+/// Appends with a bounded slack (1/8 + 4 entries) instead of doubling: memory per stored map matters,
+/// and shrinking after every insert would copy the whole leaf each time.
+void Append(std::vector<TreeEntry>& entries, const TreeEntry& entry) {
+    if (entries.size() == entries.capacity()) entries.reserve(entries.size() + entries.size() / 8 + 4);
+    entries.push_back(entry);
+}
+
+}  // namespace
+
 std::vector<TreeMatch> HammingTree::Match(const std::vector<Descriptor>& query) const {
     std::vector<std::vector<TreeMatch>> per_query(query.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, query.size(), 32), [&](const auto& range) {
         for (std::size_t q = range.begin(); q != range.end(); ++q) {
-            auto& found = per_query[q];
-            // Leaf entries are in insertion order, hence grouped by map id (maps are added in order):
-            // one pass keeps the best match per map; ties go to the earlier keypoint.
-            for (const auto& entry : nodes_[Descend(query[q], nullptr)].entries) {
-                const int distance = HammingDistance(query[q], entry.descriptor);
-                if (distance >= config_.max_distance) continue;
-                if (!found.empty() && found.back().map_id == entry.map_id) {
-                    if (distance < found.back().distance) found.back() = {std::int32_t(q), entry.map_id, entry.keypoint, distance};
-                } else {
-                    found.push_back({std::int32_t(q), entry.map_id, entry.keypoint, distance});
-                }
-            }
+            ScanLeaf(nodes_[Descend(query[q], nullptr)].entries, query[q], std::int32_t(q), config_.max_distance,
+                     per_query[q]);
         }
     });
+    std::size_t total = 0;
+    for (const auto& found : per_query) total += found.size();
     std::vector<TreeMatch> matches;
+    matches.reserve(total);
     for (auto& found : per_query) matches.insert(matches.end(), found.begin(), found.end());
     return matches;
 }
@@ -53,20 +73,15 @@ void HammingTree::Add(const std::vector<Descriptor>& descriptors, std::int32_t m
     for (std::size_t i = 0; i < descriptors.size(); ++i) {
         std::bitset<256> used;
         const std::int32_t leaf = Descend(descriptors[i], &used);
-        nodes_[leaf].entries.push_back({descriptors[i], map_id, std::int32_t(i)});
+        Append(nodes_[leaf].entries, {descriptors[i], map_id, std::int32_t(i)});
         touched.emplace(leaf, used);
     }
     size_ += descriptors.size();
     for (const auto& [leaf, used] : touched) {
-        auto& entries = nodes_[leaf].entries;
-        const int size = int(entries.size());
+        const int size = int(nodes_[leaf].entries.size());
         // A leaf of near-identical descriptors (the same place seen again and again) has no balanced bit;
         // recounting its bits on every insert would cost O(leaf) per insert, so retry only after growth.
-        if (size > config_.leaf_capacity && 2 * size >= 3 * nodes_[leaf].unsplittable_size) {
-            SplitLeaf(leaf, used);
-        } else if (entries.capacity() > entries.size() + entries.size() / 4 + 4) {
-            entries.shrink_to_fit();  // bound the slack of vector growth: memory per stored map matters
-        }
+        if (size > config_.leaf_capacity && 2 * size >= 3 * nodes_[leaf].unsplittable_size) SplitLeaf(leaf, used);
     }
 }
 
@@ -111,7 +126,7 @@ void HammingTree::SplitLeaf(std::int32_t leaf, std::bitset<256> used_bits) {
     nodes_[leaf].children[0] = first_child;
     nodes_[leaf].children[1] = first_child + 1;
     for (auto& entry : entries) {
-        nodes_[first_child + (TestBit(entry.descriptor, best_bit) ? 1 : 0)].entries.push_back(entry);
+        Append(nodes_[first_child + (TestBit(entry.descriptor, best_bit) ? 1 : 0)].entries, entry);
     }
     used_bits.set(best_bit);
     for (int side = 0; side < 2; ++side) {

@@ -87,11 +87,13 @@ void BindFeaturesAndMatching(ConfigSchema& s, PipelineConfig& c) {
     s.Add("detector.min_inliers", &d.min_inliers, "", "gamma: accept with this many inliers (paper: 10; later 6)", Range{2, 100000});
     s.Add("detector.store_images", &d.store_images, "", "keep density images in the database (reports, persistence)");
     auto& r = c.detector.ransac;
-    s.Add("ransac.max_trials", &r.max_trials, "", "0 = n(n-1) as the paper-era code; later code 688", Range{0, 10000000});
+    s.AddEnum("ransac.sampling", &r.sampling, {{"exhaustive", RansacSampling::kExhaustive}, {"random", RansacSampling::kRandom}},
+              "every distinct pair once, best matches first; or seeded random draws (paper-era, later code)");
+    s.Add("ransac.max_trials", &r.max_trials, "", "cap on hypotheses; 0 = all pairs (exhaustive) or n(n-1) draws (random); later code 688", Range{0, 10000000});
     s.Add("ransac.early_stop_inliers", &r.early_stop_inliers, "", "stop at this many inliers (30)", Range{2, 100000});
-    s.Add("ransac.weighted_sampling", &r.weighted_sampling, "", "paper-era: samples weighted by descriptor distance");
+    s.Add("ransac.weighted_sampling", &r.weighted_sampling, "", "paper-era: prefer matches of small descriptor distance");
     s.Add("ransac.refit_inliers", &r.refit_inliers, "", "later code: final fit on the inliers");
-    s.Add("ransac.seed", &c.detector.ransac.seed, "", "random seed (every random choice derives from it)");
+    s.Add("ransac.seed", &c.detector.ransac.seed, "", "random seed of random sampling (every random choice derives from it)");
 }
 
 void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
