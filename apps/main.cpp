@@ -2,8 +2,10 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "core/allocator.hpp"
 
 int main(int argc, char** argv) {
+    revisit::TuneAllocator();
     CLI::App root{
         "revisit finds loop closures in LiDAR and 2D-laser sequences and corrects the drifted trajectory.\n"
         "Datasets: KITTI-style folders (velodyne/*.bin), folders of .pcd/.ply scans, MRPT rawlogs.\n"

@@ -120,6 +120,13 @@ void ClosureStageCases(const CaseContext& c) {
     }
 }
 
+/// Leaf entries a query compares against: with many near-identical maps the scan is memory-bound.
+std::size_t ScannedEntries(const HammingTree& tree, const std::vector<Descriptor>& query) {
+    std::size_t scanned = 0;
+    for (const auto& d : query) scanned += tree.LeafOf(d).size();
+    return scanned;
+}
+
 void TreeCases(const CaseContext& c) {
     const auto maps = Maps(c);
     const auto& source = maps.back();  // real data when present
@@ -155,7 +162,8 @@ void TreeCases(const CaseContext& c) {
                   "HammingTree::MatchAndAdd, " + std::to_string(query.size()) + " descriptors of " + source.label +
                       " against " + std::to_string(tree.size()) + " stored, depth " + std::to_string(tree.depth()) +
                       ", " + std::to_string(matches) + " matches, " +
-                      std::to_string(tree.MemoryBytes() / std::size_t(next_id)) + " B/map");
+                      std::to_string(tree.MemoryBytes() / std::size_t(next_id)) + " B/map, " +
+                      std::to_string(ScannedEntries(tree, query)) + " entries scanned");
         }
     }
 }

@@ -1,8 +1,8 @@
 #include "closures/hamming_tree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <map>
 #include <tuple>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -27,18 +27,19 @@ const std::vector<TreeEntry>& HammingTree::LeafOf(const Descriptor& descriptor) 
 
 namespace {
 
-/// Best match per map of one query descriptor in one leaf. Leaf entries are in insertion order, hence
-/// grouped by map id (maps are added in order): one pass keeps the best per map; ties go to the earlier
-/// keypoint. This loop is where matching spends its time, so it gets the popcount clone.
+/// Appends to `out` the best match per map of one query descriptor in one leaf. Leaf entries are in
+/// insertion order, hence grouped by map id (maps are added in order): one pass keeps the best per map;
+/// ties go to the earlier keypoint. This loop is where matching spends its time: popcount clone.
 REVISIT_POPCNT_CLONES void ScanLeaf(const std::vector<TreeEntry>& entries, const Descriptor& query, std::int32_t q,
-                                    int max_distance, std::vector<TreeMatch>& found) {
+                                    int max_distance, std::vector<TreeMatch>& out) {
+    const std::size_t first = out.size();
     for (const auto& entry : entries) {
         const int distance = HammingDistance(query, entry.descriptor);
         if (distance >= max_distance) continue;
-        if (!found.empty() && found.back().map_id == entry.map_id) {
-            if (distance < found.back().distance) found.back() = {q, entry.map_id, entry.keypoint, distance};
+        if (out.size() > first && out.back().map_id == entry.map_id) {
+            if (distance < out.back().distance) out.back() = {q, entry.map_id, entry.keypoint, distance};
         } else {
-            found.push_back({q, entry.map_id, entry.keypoint, distance});
+            out.push_back({q, entry.map_id, entry.keypoint, distance});
         }
     }
 }
@@ -50,38 +51,82 @@ void Append(std::vector<TreeEntry>& entries, const TreeEntry& entry) {
     entries.push_back(entry);
 }
 
+/// How many entries have each of the 256 bits on. Each descriptor byte indexes a table that spreads its
+/// 8 bits over the 8 byte lanes of a word, so one addition counts 8 bits; lanes are flushed before they
+/// can overflow. About four times faster than visiting the set bits one by one.
+std::array<int, 256> CountOnes(const std::vector<TreeEntry>& entries) {
+    static const auto kSpread = [] {
+        std::array<std::uint64_t, 256> table{};
+        for (int byte = 0; byte < 256; ++byte) {
+            for (int lane = 0; lane < 8; ++lane) table[byte] |= std::uint64_t((byte >> lane) & 1) << (8 * lane);
+        }
+        return table;
+    }();
+    std::array<int, 256> ones{};
+    std::array<std::uint64_t, 32> lanes{};
+    const auto flush = [&] {
+        for (int k = 0; k < 32; ++k) {
+            for (int lane = 0; lane < 8; ++lane) ones[8 * k + lane] += int((lanes[k] >> (8 * lane)) & 0xff);
+        }
+        lanes.fill(0);
+    };
+    int pending = 0;
+    for (const auto& entry : entries) {
+        for (int k = 0; k < 32; ++k) lanes[k] += kSpread[(entry.descriptor[k >> 3] >> (8 * (k & 7))) & 0xff];
+        if (++pending == 255) flush(), pending = 0;
+    }
+    flush();
+    return ones;
+}
+
 }  // namespace
 
 std::vector<TreeMatch> HammingTree::Match(const std::vector<Descriptor>& query) const {
-    std::vector<std::vector<TreeMatch>> per_query(query.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, query.size(), 32), [&](const auto& range) {
-        for (std::size_t q = range.begin(); q != range.end(); ++q) {
-            ScanLeaf(nodes_[Descend(query[q], nullptr)].entries, query[q], std::int32_t(q), config_.max_distance,
-                     per_query[q]);
+    // Fixed chunks of queries, so that each chunk's buffer is reserved once from the sizes of its leaves
+    // (a bound on its matches) and the chunks concatenate in query order whatever the thread count.
+    constexpr std::size_t kChunk = 32;
+    std::vector<std::vector<TreeMatch>> chunks((query.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
+        const std::size_t begin = c * kChunk, end = std::min(query.size(), begin + kChunk);
+        std::array<std::int32_t, kChunk> leaves{};
+        std::size_t bound = 0;
+        for (std::size_t q = begin; q < end; ++q) {
+            leaves[q - begin] = Descend(query[q], nullptr);
+            bound += nodes_[leaves[q - begin]].entries.size();
+        }
+        chunks[c].reserve(bound);
+        for (std::size_t q = begin; q < end; ++q) {
+            ScanLeaf(nodes_[leaves[q - begin]].entries, query[q], std::int32_t(q), config_.max_distance, chunks[c]);
         }
     });
     std::size_t total = 0;
-    for (const auto& found : per_query) total += found.size();
+    for (const auto& chunk : chunks) total += chunk.size();
     std::vector<TreeMatch> matches;
     matches.reserve(total);
-    for (auto& found : per_query) matches.insert(matches.end(), found.begin(), found.end());
+    for (const auto& chunk : chunks) matches.insert(matches.end(), chunk.begin(), chunk.end());
     return matches;
 }
 
 void HammingTree::Add(const std::vector<Descriptor>& descriptors, std::int32_t map_id) {
-    std::map<std::int32_t, std::bitset<256>> touched;  // ordered: deterministic split order
+    std::vector<std::int32_t> touched;
+    touched.reserve(descriptors.size());
     for (std::size_t i = 0; i < descriptors.size(); ++i) {
-        std::bitset<256> used;
-        const std::int32_t leaf = Descend(descriptors[i], &used);
+        const std::int32_t leaf = Descend(descriptors[i], nullptr);
         Append(nodes_[leaf].entries, {descriptors[i], map_id, std::int32_t(i)});
-        touched.emplace(leaf, used);
+        touched.push_back(leaf);
     }
     size_ += descriptors.size();
-    for (const auto& [leaf, used] : touched) {
+    std::sort(touched.begin(), touched.end());  // deterministic split order
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const std::int32_t leaf : touched) {
         const int size = int(nodes_[leaf].entries.size());
         // A leaf of near-identical descriptors (the same place seen again and again) has no balanced bit;
         // recounting its bits on every insert would cost O(leaf) per insert, so retry only after growth.
-        if (size > config_.leaf_capacity && 2 * size >= 3 * nodes_[leaf].unsplittable_size) SplitLeaf(leaf, used);
+        if (size > config_.leaf_capacity && 2 * size >= 3 * nodes_[leaf].unsplittable_size) {
+            std::bitset<256> used;  // the bits on the leaf's path, shared by all of its entries
+            Descend(nodes_[leaf].entries.front().descriptor, &used);
+            SplitLeaf(leaf, used);
+        }
     }
 }
 
@@ -93,14 +138,7 @@ std::vector<TreeMatch> HammingTree::MatchAndAdd(const std::vector<Descriptor>& d
 
 void HammingTree::SplitLeaf(std::int32_t leaf, std::bitset<256> used_bits) {
     // Thesis Eq. (3.9): split on the unused bit that is on for closest to half of the descriptors.
-    std::array<int, 256> ones{};
-    for (const auto& entry : nodes_[leaf].entries) {
-        for (int word = 0; word < 4; ++word) {
-            for (std::uint64_t bits = entry.descriptor[word]; bits != 0; bits &= bits - 1) {
-                ++ones[word * 64 + __builtin_ctzll(bits)];
-            }
-        }
-    }
+    const std::array<int, 256> ones = CountOnes(nodes_[leaf].entries);
     const double n = double(nodes_[leaf].entries.size());
     int best_bit = -1;
     double best_gap = 2.0;

@@ -37,13 +37,32 @@ TEST(Configs, EveryPresetLoadsAndChangesSomething) {
     const std::string defaults = DumpConfig(PipelineConfig{});
     int presets = 0;
     for (const auto& entry : fs::directory_iterator(kConfigs)) {
-        if (entry.path().extension() != ".yaml" || entry.path().filename() == "default.yaml") continue;
+        const auto name = entry.path().filename();
+        if (entry.path().extension() != ".yaml" || name == "default.yaml" || name == "paper-detector.yaml") continue;
         SCOPED_TRACE(entry.path().filename().string());
         const auto config = LoadConfig({entry.path().string()}, {});
         EXPECT_NE(DumpConfig(config), defaults);
         ++presets;
     }
     EXPECT_GE(presets, 6);  // kitti, ouster, livox, handheld, indoor2d, depth
+}
+
+TEST(Configs, PaperDetectorOverlayUndoesOnlyTheDetectorChanges) {
+    // Layered after a sensor preset: the published detector on the preset's maps and pixels.
+    const auto layered = LoadConfig({(kConfigs / "indoor2d.yaml").string(), (kConfigs / "paper-detector.yaml").string()}, {});
+    const PipelineConfig paper;
+    EXPECT_TRUE(layered.odometry.planar);
+    EXPECT_DOUBLE_EQ(layered.local_map.split_distance, 15.0);
+    EXPECT_DOUBLE_EQ(layered.detector.density.resolution, 0.05);
+    EXPECT_EQ(layered.detector.density.scaling, paper.detector.density.scaling);
+    EXPECT_EQ(layered.detector.features.min_keypoints, paper.detector.features.min_keypoints);
+    EXPECT_EQ(layered.detector.features.pad_border, paper.detector.features.pad_border);
+    EXPECT_EQ(layered.detector.selection, paper.detector.selection);
+    EXPECT_EQ(layered.detector.min_matches, paper.detector.min_matches);
+    EXPECT_EQ(layered.detector.skip_recent_maps, paper.detector.skip_recent_maps);
+    EXPECT_DOUBLE_EQ(layered.detector.skip_recent_travel, paper.detector.skip_recent_travel);
+    // On the defaults (the paper) it changes nothing.
+    EXPECT_EQ(DumpConfig(LoadConfig({(kConfigs / "paper-detector.yaml").string()}, {})), DumpConfig(paper));
 }
 
 TEST(Configs, OverridesComeLastAndUnknownKeysNameTheClosest) {
