@@ -27,7 +27,7 @@ std::vector<Eigen::Vector3d> Positions(const TimedTrajectory& trajectory) {
     return positions;
 }
 
-/// Closure lines join the first scans of the two maps (their map frames) on the odometry trajectory: there the
+/// Closure lines (accepted, and rejected after verification) join the first scans of the two maps (their map frames) on the odometry trajectory: there the
 /// drift the closure corrects shows as the line's length (on the corrected trajectory both ends coincide).
 OverviewData MakeOverviewData(const ReportInput& input) {
     OverviewData data;
@@ -37,6 +37,8 @@ OverviewData MakeOverviewData(const ReportInput& input) {
     data.reference = Positions(input.reference);
     const auto& along = data.odometry.empty() ? data.corrected : data.odometry;
     for (const auto& entry : input.closures) {
+        // Candidates below the inlier gate were never verified: hundreds of them would hide the map.
+        if (!entry.accepted && !entry.T_query_ref_refined) continue;
         const auto q = entry.closure.query_scans.first, r = entry.closure.ref_scans.first;
         if (q < along.size() && r < along.size()) data.closures.push_back({along[q], along[r], entry.accepted});
     }
