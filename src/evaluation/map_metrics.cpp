@@ -60,25 +60,30 @@ double YawOf(const Eigen::Isometry3d& T) {
     return std::atan2(x_axis.y(), x_axis.x());
 }
 
+ClosurePoseError ClosureErrorAgainst(const Poses& T_world_sensor, std::size_t query_first_scan, std::size_t ref_first_scan,
+                                     const Eigen::Isometry3d& T_query_ref) {
+    if (query_first_scan >= T_world_sensor.size() || ref_first_scan >= T_world_sensor.size())
+        throw ConfigError("map closure between scans " + std::to_string(query_first_scan) + " and " +
+                          std::to_string(ref_first_scan) + " names a scan without a reference pose");
+    const Eigen::Isometry3d T_gt_query_ref = T_world_sensor[query_first_scan].inverse() * T_world_sensor[ref_first_scan];
+    const Eigen::Isometry3d error = T_gt_query_ref.inverse() * T_query_ref;
+    return {error.translation().head<2>().norm(), std::abs(YawOf(error)) * 180.0 / M_PI};
+}
+
 MapMetrics EvaluateMapClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_world_sensor,
                                const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
-    constexpr double kDegPerRad = 180.0 / M_PI;
     MapMetrics metrics;
     std::vector<double> translation_errors, yaw_errors;
     for (std::size_t k = 0; k < closures.size(); ++k) {
         const MapClosureForEval& c = closures[k];
         if (c.inliers < config.min_inliers) continue;
-        if (c.query_first_scan >= T_world_sensor.size() || c.ref_first_scan >= T_world_sensor.size())
-            throw ConfigError("map closure " + std::to_string(k) + " names a scan without a reference pose");
         MapClosureAssessment assessment;
         assessment.closure = k;
         assessment.gt_scan_pairs = CountPairsBetween(c, gt_scan_pairs);
         assessment.right_map = assessment.gt_scan_pairs > 0;
-        const Eigen::Isometry3d T_gt_query_ref =
-            T_world_sensor[c.query_first_scan].inverse() * T_world_sensor[c.ref_first_scan];
-        const Eigen::Isometry3d error = T_gt_query_ref.inverse() * c.T_query_ref;
-        assessment.translation_error = error.translation().head<2>().norm();
-        assessment.yaw_error_deg = std::abs(YawOf(error)) * kDegPerRad;
+        const ClosurePoseError error = ClosureErrorAgainst(T_world_sensor, c.query_first_scan, c.ref_first_scan, c.T_query_ref);
+        assessment.translation_error = error.translation;
+        assessment.yaw_error_deg = error.yaw_deg;
         if (assessment.right_map) {
             ++metrics.num_right_maps;
             translation_errors.push_back(assessment.translation_error);

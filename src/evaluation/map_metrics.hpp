@@ -30,6 +30,16 @@ struct MapMetrics {
     ErrorStatistics yaw_error_deg;           ///< [deg] over right-map closures only
 };
 
+/// Error of an estimated map-to-map pose against ground truth: planar translation and yaw.
+struct ClosurePoseError {
+    double translation = 0.0;  ///< [m] planar (x, y) part of T_gt^-1 * T_est
+    double yaw_deg = 0.0;      ///< [deg] |yaw| of T_gt^-1 * T_est
+};
+/// T_gt_query_ref = T_world_sensor[query_first]^-1 * T_world_sensor[ref_first] (map frames are the frames of
+/// the maps' first scans). Throws ConfigError when a scan has no reference pose.
+ClosurePoseError ClosureErrorAgainst(const Poses& T_world_sensor, std::size_t query_first_scan, std::size_t ref_first_scan,
+                                     const Eigen::Isometry3d& T_query_ref);
+
 /// T_gt_query_ref = T_world_sensor[query_first]^-1 * T_world_sensor[ref_first]: the map frames are the
 /// frames of the maps' first scans, as in MapClosureForEval. `gt_scan_pairs` may be in any order.
 MapMetrics EvaluateMapClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_world_sensor,

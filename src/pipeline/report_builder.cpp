@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
 #include "pipeline/csv.hpp"
 #include "pipeline/folder_map_store.hpp"
@@ -115,14 +116,12 @@ ReportInput LoadReportInput(const RunFolder& run) {
             entry.T_query_ref_refined = record.refinement.T_query_ref.matrix();
         }
         if (state.has_reference()) {
-            const auto& q = state.reference[record.closure.query_scans.first];
-            const auto& r = state.reference[record.closure.ref_scans.first];
-            const Eigen::Isometry3d T_true = q.inverse() * r;
             const Eigen::Isometry3d T_est = entry.T_query_ref_refined ? Eigen::Isometry3d(*entry.T_query_ref_refined)
                                                                       : Eigen::Isometry3d(record.closure.T_query_ref);
-            const Eigen::Isometry3d error = T_true.inverse() * T_est;
-            entry.gt_translation_error = error.translation().head<2>().norm();
-            entry.gt_rotation_error = Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI;
+            const ClosurePoseError error = ClosureErrorAgainst(state.reference, record.closure.query_scans.first,
+                                                               record.closure.ref_scans.first, T_est);
+            entry.gt_translation_error = error.translation;
+            entry.gt_rotation_error = error.yaw_deg;
         }
         input.closures.push_back(entry);
     }

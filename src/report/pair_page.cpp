@@ -86,8 +86,8 @@ PairPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool
         if (entry.T_query_ref_refined) numbers.push_back({"T_query_ref (refined)", PoseText(*entry.T_query_ref_refined)});
         numbers.push_back({"refinement fitness", Optional(entry.fitness, "")});
         numbers.push_back({"refinement RMSE", Optional(entry.rmse, " m")});
-        numbers.push_back({"ground-truth error", Optional(entry.gt_translation_error, " m") + ", " +
-                                                     Optional(entry.gt_rotation_error, " deg", 2)});
+        numbers.push_back({"ground-truth error (planar, yaw)", Optional(entry.gt_translation_error, " m") + ", " +
+                                                                   Optional(entry.gt_rotation_error, " deg", 2)});
         if (entry.gt_true_positive) numbers.push_back({"ground truth", *entry.gt_true_positive ? "true closure" : "false closure"});
     }
     if (T_odometry) numbers.push_back({"T_query_ref (odometry)", PoseText(*T_odometry)});

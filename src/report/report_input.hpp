@@ -33,8 +33,8 @@ struct ClosureEntry {
     std::optional<double> fitness;           ///< refinement fitness (e.g. inlier ratio of the ICP) [0..1]
     std::optional<double> rmse;              ///< refinement residual [m]
     std::optional<Eigen::Matrix4d> T_query_ref_refined;  ///< after refinement, when refined
-    std::optional<double> gt_translation_error;  ///< [m] against ground truth, when known
-    std::optional<double> gt_rotation_error;     ///< [deg]
+    std::optional<double> gt_translation_error;  ///< [m] planar, against ground truth, when known
+    std::optional<double> gt_rotation_error;     ///< [deg] yaw
     std::optional<bool> gt_true_positive;        ///< ground truth says the two maps overlap
 };
 
