@@ -43,10 +43,7 @@ int RunDemo(const DemoOptions& o) {
     } else {
         std::cerr << "revisit demo: using the cached sequence " << data.string() << '\n';
     }
-    // Simulated worlds need the finer odometry voxels of configs/sim.yaml unless the user chose.
-    ConfigOptions config_options = o.config;
-    if (config_options.configs.empty()) config_options.configs.push_back("sim");
-    const PipelineConfig config = ResolveConfig(config_options);
+    const PipelineConfig config = ResolveConfigFor(o.config, data, std::cerr);
     RunOptions run_options;
     run_options.dataset = data;
     run_options.quiet = o.quiet;

@@ -19,7 +19,7 @@ struct RunCommandOptions {
 };
 
 int RunRun(RunCommandOptions& o) {
-    const auto config = ResolveConfig(o.config);
+    const auto config = ResolveConfigFor(o.config, o.run.dataset, std::cerr);
     const auto threads = LimitThreads(o.config.threads);
     if (o.poses == "odometry") o.run.poses = PoseSource::kOdometry;
     else if (o.poses == "dataset") o.run.poses = PoseSource::kDataset;
@@ -44,7 +44,8 @@ void AddRunCommand(CLI::App& root, Action& action) {
         "Streams the dataset: odometry, local maps, density images, ORB, Hamming tree, RANSAC, 3D refinement\n"
         "and the pose graph, as scans arrive. Writes a run folder (see README: Output files) and, when the\n"
         "dataset has reference poses or --gt is given, precision/recall/F1 and APE. Ctrl-C stops cleanly\n"
-        "and writes what was computed (run.json: complete = false).\n"
+        "and writes what was computed (run.json: complete = false). A sequence from `revisit simulate` gets\n"
+        "--config sim unless --config is given.\n"
         "Examples:\n"
         "  revisit run ~/kitti/sequences/00 --config kitti\n"
         "  revisit run intel.rawlog --config indoor2d --out runs/intel\n"
