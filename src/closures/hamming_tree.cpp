@@ -53,7 +53,7 @@ void Append(std::vector<TreeEntry>& entries, const TreeEntry& entry) {
 
 /// How many entries have each of the 256 bits on. Each descriptor byte indexes a table that spreads its
 /// 8 bits over the 8 byte lanes of a word, so one addition counts 8 bits; lanes are flushed before they
-/// can overflow. About four times faster than visiting the set bits one by one.
+/// can overflow: 32 additions per entry instead of one step per set bit.
 std::array<int, 256> CountOnes(const std::vector<TreeEntry>& entries) {
     static const auto kSpread = [] {
         std::array<std::uint64_t, 256> table{};
