@@ -124,6 +124,7 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("graph.closure_sigma_rotation", &n.closure_sigma_rotation, "rad", "fixed closure noise", Range{1e-6, 10});
     s.Add("graph.optimize_every_closures", &n.optimize_every_closures, "", "online re-optimization period", Range{1, 100000});
     s.Add("graph.online_time_budget", &n.online_time_budget, "s", "time bound per online update", Range{0.001, 1000});
+    s.Add("graph.min_weight", &n.min_weight, "", "closures ending below this robust weight are rejected as inconsistent (0 = keep all)", Range{0, 1});
 }
 
 void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {

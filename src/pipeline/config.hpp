@@ -31,6 +31,9 @@ struct GraphNoiseConfig {
     double closure_sigma_rotation = 0.03;     ///< [rad]
     int optimize_every_closures = 1;          ///< online: re-optimize after this many accepted closures
     double online_time_budget = 0.2;          ///< [s] per online update (the final batch has none)
+    /// After the final optimization, verified closures whose robust weight fell below this are reported
+    /// as rejected: the graph found them inconsistent with the odometry and the other closures.
+    double min_weight = 0.1;
 };
 
 struct OutputConfig {

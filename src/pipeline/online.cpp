@@ -1,12 +1,20 @@
 #include "pipeline/online.hpp"
 
 #include <chrono>
+#include <cstdio>
+#include <string>
 
 #include "core/voxel.hpp"
 #include "optimization/trajectory_correction.hpp"
 
 namespace revisit {
 namespace {
+
+std::string FormatWeight(double weight) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.2g", weight);
+    return text;
+}
 
 class MemoryMapStore final : public MapPointStore {
   public:
@@ -80,6 +88,14 @@ PipelineUpdate ClosurePipeline::Finish() {
     PipelineUpdate update;
     if (auto last = mapper_.Finish()) update = ProcessMap(*last);
     Optimize(true);
+    // The robust kernel has already switched these off (their weight is near zero, so the corrected
+    // trajectory ignores them); say so instead of calling them accepted.
+    for (auto& record : closures_) {
+        if (!record.accepted || record.graph_weight >= config_.graph_noise.min_weight) continue;
+        record.accepted = false;
+        record.reason = "inconsistent with the pose graph (weight " + FormatWeight(record.graph_weight) + " < " +
+                        FormatWeight(config_.graph_noise.min_weight) + ")";
+    }
     return update;
 }
 

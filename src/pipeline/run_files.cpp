@@ -87,7 +87,7 @@ void WriteClosures(const RunFolder& run, const RunState& state) {
                                               "ref_first_scan", "ref_last_scan", "inliers", "votes"},
                                              PoseColumns("T_query_ref")),
                                       PoseColumns("T_query_ref_refined")),
-                               {"overlap", "rms_m", "correspondences", "refined", "accepted", "graph_weight", "reason"});
+                               {"overlap", "rms_m", "correspondences", "refined", "verified", "accepted", "graph_weight", "reason"});
     std::vector<std::string> rows;
     fs::create_directories(run.root() / "closures");
     for (std::size_t i = 0; i < state.closures.size(); ++i) {
@@ -98,7 +98,7 @@ void WriteClosures(const RunFolder& run, const RunState& state) {
                            .Add(c.query_scans.last).Add(c.ref_scans.first).Add(c.ref_scans.last).Add(c.num_inliers)
                            .Add(c.num_votes).AddPose(Eigen::Isometry3d(c.T_query_ref)).AddPose(r.refinement.T_query_ref)
                            .Add(r.refinement.overlap).Add(r.refinement.rms).Add(r.refinement.num_correspondences)
-                           .Add(r.refined).Add(r.accepted).Add(r.graph_weight).Add(r.reason)
+                           .Add(r.refined).Add(r.refinement.accepted).Add(r.accepted).Add(r.graph_weight).Add(r.reason)
                            .Text());
         WriteClosureDetail(ClosureDetailFile(run, i), c);
     }
@@ -223,7 +223,7 @@ RunState ReadRunState(const RunFolder& run) {
         r.refinement.num_correspondences = static_cast<int>(closures.Integer(i, "correspondences"));
         r.refined = closures.Integer(i, "refined") != 0;
         r.accepted = closures.Integer(i, "accepted") != 0;
-        r.refinement.accepted = r.accepted;
+        r.refinement.accepted = closures.Integer(i, "verified") != 0;
         r.graph_weight = closures.Number(i, "graph_weight");
         r.reason = closures.Text(i, "reason");
         r.refinement.reason = r.reason;

@@ -1,20 +1,22 @@
 #include "pipeline/summary.hpp"
 
+#include <cmath>
 #include <iomanip>
 
 namespace revisit {
 
 void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation) {
-    std::size_t density = 0, refined = 0;
+    std::size_t density = 0, refined = 0, verified = 0;
     for (const auto& c : state.closures) {
         density += c.method == "density";
         refined += c.refined;
+        verified += c.refined && c.refinement.accepted;
     }
     out << std::fixed << std::setprecision(1);
     out << "\n  scans             " << state.odometry.size() << (state.complete ? "" : "  (interrupted)") << '\n'
         << "  local maps        " << state.maps.size() << '\n'
-        << "  closures          " << density << " detected (>= 3 inliers), " << refined << " verified in 3D, "
-        << state.NumAccepted() << " accepted\n"
+        << "  closures          " << density << " detected (>= 3 inliers), " << refined << " refined in 3D, " << verified
+        << " verified, " << state.NumAccepted() << " accepted by the pose graph\n"
         << "  wall time         " << state.wall_seconds << " s (" << (state.wall_seconds > 0 ? state.odometry.size() / state.wall_seconds : 0.0)
         << " scans/s), peak memory " << state.peak_rss_kb / 1024 << " MiB\n\n";
     out << "  stage                           total [s]    mean [ms]    calls\n";
@@ -45,8 +47,9 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     const auto& before = evaluation->odometry.ape.errors.translation_stats;
     const auto& after = evaluation->corrected.ape.errors.translation_stats;
     if (before.rmse > 0) {
-        out << "\n  APE translation RMSE: " << before.rmse << " m -> " << after.rmse << " m ("
-            << std::setprecision(0) << 100.0 * (1.0 - after.rmse / before.rmse) << "% lower)\n";
+        const double change = 100.0 * (after.rmse / before.rmse - 1.0);
+        out << "\n  APE translation RMSE: " << before.rmse << " m -> " << after.rmse << " m (" << std::setprecision(0)
+            << std::abs(change) << (change <= 0.0 ? "% lower" : "% higher: the closures made it worse") << ")\n";
     }
 }
 
