@@ -32,9 +32,9 @@ struct ClosureRecord {
     Closure closure;
     RefinementResult refinement;
     bool refined = false;            ///< false: below the acceptance threshold, not refined
-    bool accepted = false;           ///< refined, verified and added to the pose graph
+    bool accepted = false;           ///< verified (refinement.accepted), and its final graph weight >= graph.min_weight
     std::string reason;              ///< why not accepted
-    double graph_weight = 0.0;       ///< final robust weight in the pose graph (accepted only)
+    double graph_weight = 0.0;       ///< final robust weight in the pose graph (verified closures only)
 };
 
 /// Accumulated wall time per stage.
