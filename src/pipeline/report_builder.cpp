@@ -3,10 +3,14 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 
+#include "closures/database_io.hpp"
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
 #include "pipeline/csv.hpp"
@@ -149,6 +153,26 @@ ReportInput LoadReportInput(const RunFolder& run) {
         image.resolution = (*maps)[id].density_resolution;
         if (image.image.empty()) return std::nullopt;
         return image;
+    };
+    for (const auto& m : state.maps) input.map_ids.push_back(m.id);
+    // Keypoints live in the closure database: loaded once, on first use; without it pictures lack keypoints.
+    auto keypoints = std::make_shared<std::optional<std::map<int, std::vector<Eigen::Vector2f>>>>();
+    input.load_keypoints = [run, keypoints](int id) {
+        if (!*keypoints) {
+            std::map<int, std::vector<Eigen::Vector2f>> by_id;
+            try {
+                const auto detector = LoadDatabase(run.database(), LoadConfig({run.config().string()}, {}).detector);
+                // The run's own maps are the last session stored (LoadDatabase opens a new one after them).
+                int last_session = 0;
+                for (const auto& record : detector.maps()) last_session = std::max(last_session, record.session);
+                for (const auto& record : detector.maps())
+                    if (record.session == last_session) by_id[record.id] = record.keypoints;
+            } catch (const std::exception&) {
+            }
+            *keypoints = std::move(by_id);
+        }
+        const auto it = (*keypoints)->find(id);
+        return it == (*keypoints)->end() ? std::vector<Eigen::Vector2f>{} : it->second;
     };
     input.load_global_map = [run]() {
         std::vector<Eigen::Vector3f> points;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace revisit {
 namespace {
@@ -92,6 +93,24 @@ cv::Mat DrawDensityMatches(const DensityImage& query, const DensityImage& ref, c
     cv::Mat panel_r = canvas(cv::Rect(left.cols + gap, header, right.cols, right.rows));
     DrawScaleBar(panel_q, scale_q / query.resolution);
     DrawScaleBar(panel_r, scale_r / ref.resolution);
+    DrawNorthArrow(canvas, 0.0);
+    return canvas;
+}
+
+cv::Mat DrawDensityKeypoints(const DensityImage& image, const std::vector<Eigen::Vector2f>& keypoints,
+                             const std::string& title, const DensityPictureConfig& config) {
+    const int scale = Magnification(image.image.rows, image.image.cols, config);
+    const cv::Mat panel = Panel(image.image, scale);
+    const int header = 110;
+    cv::Mat canvas(panel.rows + header, std::max(panel.cols, 420), CV_8UC3, palette::kBackground.Bgr());
+    panel.copyTo(canvas(cv::Rect(0, header, panel.cols, panel.rows)));
+    const cv::Point2d offset(0, header);
+    for (const auto& keypoint : keypoints)
+        cv::circle(canvas, Round(offset + Display(keypoint, image.image.rows, scale)), 3, palette::kKeypoint.Bgr(), 1, cv::LINE_AA);
+    DrawLabel(canvas, title, {10, header - 12}, 0.55);
+    DrawLegend(canvas, {{"ORB keypoints (" + std::to_string(keypoints.size()) + ")", palette::kKeypoint}});
+    cv::Mat panel_area = canvas(cv::Rect(0, header, panel.cols, panel.rows));
+    DrawScaleBar(panel_area, scale / image.resolution);
     DrawNorthArrow(canvas, 0.0);
     return canvas;
 }

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace revisit {
 
@@ -20,6 +21,10 @@ struct DensityPictureConfig {
 /// outliers red), legend and scale bars. A closure without matches draws the two images only.
 cv::Mat DrawDensityMatches(const DensityImage& query, const DensityImage& ref, const Closure& closure,
                            const DensityPictureConfig& config = {});
+
+/// One density image with its ORB keypoints, a title, legend, scale bar and north arrow (the per-map page).
+cv::Mat DrawDensityKeypoints(const DensityImage& image, const std::vector<Eigen::Vector2f>& keypoints,
+                             const std::string& title, const DensityPictureConfig& config = {});
 
 /// The reference image moved into the query image by the planar part (x, y, yaw) of T_query_ref: query in the red
 /// channel, reference in green and blue (cyan), overlap white. Ground levelling is assumed near identity.

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -48,8 +49,29 @@ std::string Optional(const std::optional<double>& value, const std::string& unit
 
 }  // namespace
 
+std::string ClosureStem(std::size_t index) {
+    char stem[32];
+    std::snprintf(stem, sizeof(stem), "closure_%04zu", index);
+    return stem;
+}
+
+std::string MapStem(int map_id) {
+    char stem[32];
+    std::snprintf(stem, sizeof(stem), "map_%04d", map_id);
+    return stem;
+}
+
 void WritePng(const std::filesystem::path& path, const cv::Mat& image) {
     if (!cv::imwrite(path.string(), image)) throw std::runtime_error("report: cannot write " + path.string());
+}
+
+std::string WriteThumbnail(const cv::Mat& image, const std::string& stem, const std::filesystem::path& dir, int width) {
+    cv::Mat thumb;
+    const double scale = double(width) / image.cols;
+    cv::resize(image, thumb, cv::Size(), scale, scale, cv::INTER_AREA);
+    const std::string name = stem + "_thumb.png";
+    WritePng(dir / name, thumb);
+    return name;
 }
 
 void WriteText(const std::filesystem::path& path, const std::string& text) {
@@ -58,7 +80,7 @@ void WriteText(const std::filesystem::path& path, const std::string& text) {
     if (!out) throw std::runtime_error("report: cannot write " + path.string());
 }
 
-PairPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool detected, const std::string& stem,
+WrittenPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool detected, const std::string& stem,
                        const std::filesystem::path& report_dir, const ReportConfig& config, const std::string& nav_html) {
     const Closure& c = entry.closure;
     const auto query_map = LoadMap(input, c.query_id);
@@ -68,7 +90,7 @@ PairPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool
     const auto T_odometry = OdometryRelativePose(input, entry, query_map, ref_map);
     const Eigen::Matrix4d T_after = entry.T_query_ref_refined.value_or(c.T_query_ref);
 
-    PairPage result;
+    WrittenPage result;
     HtmlPage page(detected ? "Closure: map " + std::to_string(c.query_id) + " to map " + std::to_string(c.ref_id)
                            : "Maps " + std::to_string(c.query_id) + " and " + std::to_string(c.ref_id) + " (not a detected closure)");
     page.Raw(nav_html);
@@ -99,11 +121,7 @@ PairPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool
         ++result.images;
         page.Figure(name, caption);
         if (result.thumbnail.empty()) {
-            cv::Mat thumb;
-            const double scale = double(config.thumbnail_width) / image.cols;
-            cv::resize(image, thumb, cv::Size(), scale, scale, cv::INTER_AREA);
-            result.thumbnail = stem + "_thumb.png";
-            WritePng(report_dir / result.thumbnail, thumb);
+            result.thumbnail = WriteThumbnail(image, stem, report_dir, config.thumbnail_width);
             ++result.images;
         }
     };

@@ -76,6 +76,7 @@ struct ReportInput {
     TimedTrajectory reference;  ///< ground truth, empty when unknown
 
     std::vector<ClosureEntry> closures;
+    std::vector<int> map_ids;  ///< the run's local maps (one page each)
     std::vector<PrCurve> pr_curves;
     ErrorSeries ape_before;  ///< odometry against reference
     ErrorSeries ape_after;   ///< corrected against reference

@@ -3,6 +3,7 @@
 #include "render/map_pair_view.hpp"
 #include "render/overview.hpp"
 #include "report/html_page.hpp"
+#include "report/map_page.hpp"
 #include "report/pair_page.hpp"
 #include "report/plots.hpp"
 #include "report/svg_plot.hpp"
@@ -13,12 +14,6 @@
 
 namespace revisit {
 namespace {
-
-std::string ClosureStem(std::size_t index) {
-    char stem[32];
-    std::snprintf(stem, sizeof(stem), "closure_%04zu", index);
-    return stem;
-}
 
 std::vector<Eigen::Vector3d> Positions(const TimedTrajectory& trajectory) {
     std::vector<Eigen::Vector3d> positions;
@@ -104,7 +99,8 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     ReportStats stats;
     HtmlPage index(input.title);
     index.Raw("<nav>" + HtmlLink("#summary", "summary") + HtmlLink("#overview", "overview") +
-              HtmlLink("#metrics", "metrics") + HtmlLink("#closures", "closures") + HtmlLink("#config", "configuration") +
+              HtmlLink("#metrics", "metrics") + HtmlLink("#closures", "closures") + HtmlLink("#maps", "local maps") +
+              HtmlLink("#config", "configuration") +
               "</nav>\n");
 
     index.Heading("Summary", 2, "summary");
@@ -175,6 +171,23 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
         thumbs += "</a><figcaption>" + EscapeXml(label) + "</figcaption></figure>\n";
     }
     index.Raw(thumbs + "</div>\n");
+
+    index.Heading("Local maps", 2, "maps");
+    index.Paragraph(std::to_string(input.map_ids.size()) + " local maps.");
+    if (config.map_pages && !input.map_ids.empty()) {
+        std::string maps = "<div class=\"thumbs\">\n";
+        const std::string nav = "<nav>" + HtmlLink("index.html", "report index") + "</nav>\n";
+        for (const int id : input.map_ids) {
+            const auto page = WriteMapPage(input, id, report_dir, config, nav);
+            stats.images += page.images;
+            ++stats.pages;
+            const std::string label = "map " + std::to_string(id);
+            maps += "<figure><a href=\"" + EscapeXml(page.page.filename().string()) + "\">" +
+                    (page.thumbnail.empty() ? EscapeXml(label) : "<img src=\"" + EscapeXml(page.thumbnail) + "\" alt=\"" + EscapeXml(label) + "\">") +
+                    "</a><figcaption>" + EscapeXml(label) + "</figcaption></figure>\n";
+        }
+        index.Raw(maps + "</div>\n");
+    }
 
     index.Heading("Configuration", 2, "config");
     index.Preformatted(input.config_text.empty() ? "(not recorded)" : input.config_text);

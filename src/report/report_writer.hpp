@@ -17,6 +17,7 @@ struct ReportConfig {
     DensityImageConfig density;            ///< when density images are computed from maps (no load_density_image)
     int thumbnail_width = 240;             ///< [px]
     bool closure_pages = true;             ///< one page per closure (index thumbnails link to them)
+    bool map_pages = true;                 ///< one page per local map in ReportInput::map_ids
     ReportConfig();
 };
 
@@ -25,7 +26,8 @@ struct ReportStats {
     int images = 0;  ///< PNG and SVG files written
 };
 
-/// Writes report_dir/index.html with its images, plots and one page per closure. Creates the folder.
+/// Writes report_dir/index.html with its images, plots, one page per closure and one per local map. Creates
+/// the folder.
 ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config = {});
 
 /// Writes the page of input.closures[closure_index] (report_dir/closure_NNNN.html) and its pictures; returns its path.

@@ -1,5 +1,7 @@
 #include "report/synthetic_report.hpp"
 
+#include "closures/features.hpp"
+
 #include <cmath>
 #include <memory>
 #include <random>
@@ -155,6 +157,11 @@ ReportInput MakeSyntheticRun(const SyntheticRunConfig& config) {
         map.points.push_back(Eigen::Vector3f(-world->config.map_radius, -world->config.map_radius, 0.f));
         map.points.push_back(Eigen::Vector3f(world->config.map_radius, world->config.map_radius, 0.f));
         return ComputeDensityImage(map.points);
+    };
+    for (int id = 0; id < laps * config.maps_per_lap; ++id) input.map_ids.push_back(id);
+    input.load_keypoints = [density = input.load_density_image](int id) {
+        const auto image = density(id);
+        return image ? ComputeFeatures(image->image).keypoints : std::vector<Eigen::Vector2f>{};
     };
     input.load_global_map = [world] { return world->points_world; };
     return input;

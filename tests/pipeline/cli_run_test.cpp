@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <iterator>
 
 #include "cli.hpp"
 #include "pipeline/config.hpp"
@@ -105,6 +106,12 @@ TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
     const auto report = test::RunCli("report " + test::Quote(out));
     EXPECT_EQ(report.exit_code, 0) << report.output;
     EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "index.html"));
+    // One page per local map, with the keypoints read back from the run's closure database.
+    std::ifstream map_page(fs::path(out) / "report" / "map_0000.html");
+    const std::string map_html((std::istreambuf_iterator<char>(map_page)), std::istreambuf_iterator<char>());
+    const auto keypoints_at = map_html.find("ORB keypoints</th><td>");
+    ASSERT_NE(keypoints_at, std::string::npos) << map_html;
+    EXPECT_GT(std::stoi(map_html.substr(keypoints_at + 22)), 0) << map_html;
     const auto pair = test::RunCli("inspect " + test::Quote(out) + " --maps 1 0");
     EXPECT_EQ(pair.exit_code, 0) << pair.output;
     EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "maps_1_0.html"));

@@ -105,10 +105,11 @@ class ChromiumReport : public ::testing::Test {
     static inline std::unique_ptr<test::TempDir> dir_;
 };
 
-TEST_F(ChromiumReport, IndexAndClosurePageLoadWithoutBrokenImages) {
-    for (const char* page : {"index.html", "closure_0000.html", "closure_0001.html"}) {
+TEST_F(ChromiumReport, IndexClosureAndMapPagesLoadWithoutBrokenImages) {
+    for (const auto& [page, min_images] : {std::pair{"index.html", 4}, std::pair{"closure_0000.html", 4},
+                                           std::pair{"closure_0001.html", 4}, std::pair{"map_0000.html", 1}}) {
         const ImageCheck check = CheckImages(chromium_, Scratch(), Report() / page);
-        EXPECT_GE(check.images, 4) << page << ": " << check.detail;
+        EXPECT_GE(check.images, min_images) << page << ": " << check.detail;
         EXPECT_EQ(check.broken, 0) << page << ": " << check.detail;
     }
     // The chromium log would show script errors; the report has no scripts and must stay clean.

@@ -86,11 +86,12 @@ TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     test::TempDir dir;
     const ReportInput input = SmallRun();
     const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
-    EXPECT_EQ(stats.pages, 4);  // index + 3 closures
+    ASSERT_EQ(input.map_ids.size(), 20u);
+    EXPECT_EQ(stats.pages, 4 + 20);  // index + 3 closures + 20 local maps
     std::set<std::string> pages{"index.html"};
     for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
         if (entry.path().extension() == ".html") pages.insert(entry.path().filename().string());
-    EXPECT_EQ(pages.size(), 4u);
+    EXPECT_EQ(pages.size(), 24u);
     int images = 0;
     for (const auto& page : pages) {
         const std::string html = ReadText(dir / page);
@@ -137,6 +138,16 @@ TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     EXPECT_GT(CountColor(matches, palette::kInlier, 30), 200);
     EXPECT_GT(CountColor(matches, palette::kOutlier, 30), 100);
 
+    // Map pages: the density image with its keypoints, and links to the closures the map takes part in
+    // (map 0 is the reference of closure 0) and to the other map's page.
+    const cv::Mat map_picture = cv::imread((dir / "map_0000_density.png").string());
+    EXPECT_GT(CountColor(map_picture, palette::kKeypoint, 30), 100);
+    const std::string map_page = ReadText(dir / "map_0000.html");
+    EXPECT_NE(map_page.find("href=\"closure_0000.html\""), std::string::npos);
+    EXPECT_NE(map_page.find("href=\"map_0010.html\""), std::string::npos);
+    EXPECT_NE(ReadText(dir / "index.html").find("href=\"map_0019.html\""), std::string::npos);
+    EXPECT_NE(ReadText(dir / "map_0005.html").find("No closure candidate involves this map"), std::string::npos);
+
     // 3D views: both map colours.
     const cv::Mat after3d = cv::imread((dir / "closure_0000_3d_after.png").string());
     EXPECT_GT(CountColor(after3d, palette::kQueryMap, 20), 500);
@@ -169,7 +180,8 @@ TEST(WriteReport, RunWithoutGroundTruthOrStoredMapsStillGivesValidPages) {
     input.load_density_image = nullptr;
     input.load_global_map = nullptr;
     const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
-    EXPECT_EQ(stats.pages, 4);
+    EXPECT_EQ(stats.pages, 4 + 20);
+    EXPECT_NE(ReadText(dir / "map_0003.html").find("No map data available"), std::string::npos);
     const std::string index = ReadText(dir / "index.html");
     EXPECT_NE(index.find("No evaluation in this run"), std::string::npos);
     EXPECT_EQ(index.find("precision_recall.svg"), std::string::npos);

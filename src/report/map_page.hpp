@@ -1,0 +1,15 @@
+#pragma once
+/// One page per local map: its density image with ORB keypoints, its numbers, and every closure candidate
+/// it takes part in (issue 8's optional per-map pages).
+#include "report/pair_page.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace revisit {
+
+/// Writes `map_NNNN.html` and its pictures into report_dir. `nav_html` is put at the top.
+WrittenPage WriteMapPage(const ReportInput& input, int map_id, const std::filesystem::path& report_dir,
+                         const ReportConfig& config, const std::string& nav_html);
+
+}  // namespace revisit
