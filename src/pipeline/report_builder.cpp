@@ -168,6 +168,8 @@ ReportInput LoadReportInput(const RunFolder& run) {
                 for (const auto& record : detector.maps())
                     if (record.session == last_session) by_id[record.id] = record.keypoints;
             } catch (const std::exception&) {
+                // No database, or one this build cannot read: the pages are still useful without keypoints
+                // (`revisit inspect` and `LoadDatabase` report the database's own error).
             }
             *keypoints = std::move(by_id);
         }
