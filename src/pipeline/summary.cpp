@@ -49,7 +49,9 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     if (before.rmse > 0) {
         const double change = 100.0 * (after.rmse / before.rmse - 1.0);
         out << "\n  APE translation RMSE: " << before.rmse << " m -> " << after.rmse << " m (" << std::setprecision(0)
-            << std::abs(change) << (change <= 0.0 ? "% lower" : "% higher: the closures made it worse") << ")\n";
+            << std::abs(change)
+            << (std::abs(change) < 0.5 ? "%: unchanged" : change < 0.0 ? "% lower" : "% higher: the closures made it worse")
+            << ")\n";
     }
 }
 
