@@ -35,9 +35,8 @@ std::string ClosureList(const ReportInput& input, int map_id, const ReportConfig
 WrittenPage WriteMapPage(const ReportInput& input, int map_id, const std::filesystem::path& report_dir,
                          const ReportConfig& config, const std::string& nav_html) {
     const std::string stem = MapStem(map_id);
-    const auto map = input.load_local_map ? input.load_local_map(map_id) : std::nullopt;
-    std::optional<DensityImage> density = input.load_density_image ? input.load_density_image(map_id) : std::nullopt;
-    if (!density && map) density = ComputeDensityImage(map->points, config.density);  // not stored: unlevelled
+    const auto map = LoadMap(input, map_id);
+    const auto density = LoadDensity(input, map, map_id, config);
     const auto keypoints = input.load_keypoints ? input.load_keypoints(map_id) : std::vector<Eigen::Vector2f>{};
 
     HtmlPage page("Local map " + std::to_string(map_id));

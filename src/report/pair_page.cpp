@@ -12,7 +12,10 @@
 #include <stdexcept>
 
 namespace revisit {
-namespace {
+
+std::optional<LocalMap> LoadMap(const ReportInput& input, int id) {
+    return input.load_local_map ? input.load_local_map(id) : std::nullopt;
+}
 
 std::optional<DensityImage> LoadDensity(const ReportInput& input, const std::optional<LocalMap>& map, int id,
                                         const ReportConfig& config) {
@@ -23,9 +26,7 @@ std::optional<DensityImage> LoadDensity(const ReportInput& input, const std::opt
     return std::nullopt;
 }
 
-std::optional<LocalMap> LoadMap(const ReportInput& input, int id) {
-    return input.load_local_map ? input.load_local_map(id) : std::nullopt;
-}
+namespace {
 
 /// Relative pose of two maps from the odometry: what the detector had before any closure.
 std::optional<Eigen::Matrix4d> OdometryRelativePose(const ReportInput& input, const ClosureEntry& entry,

@@ -3,6 +3,7 @@
 #include "report/report_writer.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -19,6 +20,12 @@ struct WrittenPage {
 /// (matches, estimated pose) or an ad-hoc pair shown at its odometry pose. `nav_html` is put at the top.
 WrittenPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool detected, const std::string& stem,
                        const std::filesystem::path& report_dir, const ReportConfig& config, const std::string& nav_html);
+
+/// A local map of the run, when the run has it.
+std::optional<LocalMap> LoadMap(const ReportInput& input, int id);
+/// A map's stored density image, else one computed from `map`, else nothing.
+std::optional<DensityImage> LoadDensity(const ReportInput& input, const std::optional<LocalMap>& map, int id,
+                                        const ReportConfig& config);
 
 /// File stems of the per-closure and per-map pages: closure_NNNN, map_NNNN.
 std::string ClosureStem(std::size_t index);

@@ -15,6 +15,15 @@
 namespace revisit {
 namespace {
 
+/// An index thumbnail linking to its page; the label alone when there is no picture.
+std::string ThumbnailFigure(const std::string& page, const std::string& thumbnail, const std::string& label,
+                            const std::string& css_class = "") {
+    const std::string image = "<img" + (css_class.empty() ? std::string() : " class=\"" + css_class + "\"") + " src=\"" +
+                              EscapeXml(thumbnail) + "\" alt=\"" + EscapeXml(label) + "\">";
+    return "<figure><a href=\"" + EscapeXml(page) + "\">" + (thumbnail.empty() ? EscapeXml(label) : image) +
+           "</a><figcaption>" + EscapeXml(label) + "</figcaption></figure>\n";
+}
+
 std::vector<Eigen::Vector3d> Positions(const TimedTrajectory& trajectory) {
     std::vector<Eigen::Vector3d> positions;
     positions.reserve(trajectory.T_world_sensor.size());
@@ -163,12 +172,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
         std::string thumbnail;
         ClosurePage(input, i, report_dir, config, true, &thumbnail, &stats.images);
         ++stats.pages;
-        const std::string page = ClosureStem(i) + ".html";
-        thumbs += "<figure><a href=\"" + page + "\">";
-        thumbs += thumbnail.empty() ? EscapeXml(label)
-                                    : "<img class=\"" + std::string(entry.accepted ? "accepted" : "rejected") + "\" src=\"" +
-                                          EscapeXml(thumbnail) + "\" alt=\"" + EscapeXml(label) + "\">";
-        thumbs += "</a><figcaption>" + EscapeXml(label) + "</figcaption></figure>\n";
+        thumbs += ThumbnailFigure(ClosureStem(i) + ".html", thumbnail, label, entry.accepted ? "accepted" : "rejected");
     }
     index.Raw(thumbs + "</div>\n");
 
@@ -181,10 +185,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
             const auto page = WriteMapPage(input, id, report_dir, config, nav);
             stats.images += page.images;
             ++stats.pages;
-            const std::string label = "map " + std::to_string(id);
-            maps += "<figure><a href=\"" + EscapeXml(page.page.filename().string()) + "\">" +
-                    (page.thumbnail.empty() ? EscapeXml(label) : "<img src=\"" + EscapeXml(page.thumbnail) + "\" alt=\"" + EscapeXml(label) + "\">") +
-                    "</a><figcaption>" + EscapeXml(label) + "</figcaption></figure>\n";
+            maps += ThumbnailFigure(page.page.filename().string(), page.thumbnail, "map " + std::to_string(id));
         }
         index.Raw(maps + "</div>\n");
     }
