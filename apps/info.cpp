@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "io/dataset_summary.hpp"
+#include "pipeline/auto_settings.hpp"
 
 namespace revisit::app {
 namespace {
@@ -20,6 +21,13 @@ int RunInfo(const InfoOptions& options) {
     const auto summary = Summarize(*reader, 50.0, [](std::size_t n) { ShowProgress("reading: " + std::to_string(n) + " scans"); });
     EndProgress();
     PrintSummary(std::cout, summary);
+    if (summary.num_scans > 0) {
+        // What `revisit run` would derive from the first scans: sensor geometry, ranges, settings.
+        PipelineConfig config;
+        config.input.sensor_label = options.sensor;
+        std::cout << '\n';
+        PrintAutoSettings(std::cout, ConfigureFromData(config, options.dataset), options.dataset);
+    }
     if (summary.num_scans == 0) {
         std::cerr << "revisit: " << options.dataset << ": no range scans found (nothing revisit can use)\n";
         return 1;

@@ -13,6 +13,7 @@
 
 namespace revisit::app {
 namespace {
+constexpr std::size_t kShownWarnings = 10;  ///< frames that fell back, shown one by one; the rest are counted
 struct OdometryOptions {
     std::string dataset, out;
     ConfigOptions config;
@@ -33,6 +34,9 @@ int RunOdometry(const OdometryOptions& o) {
     while (auto scan = reader->Next()) {
         if (InterruptRequested()) break;
         trajectory.poses.push_back(odometry.RegisterScan(*scan));
+        if (!odometry.LastStats().warning.empty() && odometry.NumDegenerateFrames() <= kShownWarnings) {
+            progress.Message("warning: " + odometry.LastStats().warning);
+        }
         trajectory.timestamps.push_back(scan->timestamp);
         progress.Update(trajectory.size());
     }

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "pipeline/auto_settings.hpp"
 
 namespace revisit::app {
 namespace fs = std::filesystem;
@@ -28,12 +29,18 @@ PipelineConfig ResolveConfig(const ConfigOptions& options) {
 
 PipelineConfig ResolveConfigFor(const ConfigOptions& options, const fs::path& dataset, std::ostream& log) {
     const bool simulated = fs::exists(dataset / "sim.yaml") || fs::exists(fs::path(dataset.string() + ".sim.yaml"));
-    if (!simulated || !options.configs.empty()) return ResolveConfig(options);
-    log << "revisit: " << dataset.string() << " was written by `revisit simulate`: using --config sim "
-        << "(0.5 m odometry voxels); pass --config to choose another\n";
-    ConfigOptions with_sim = options;
-    with_sim.configs.push_back("sim");
-    return ResolveConfig(with_sim);
+    ConfigOptions resolved = options;
+    if (simulated && options.configs.empty()) {
+        log << "revisit: " << dataset.string() << " was written by `revisit simulate`: using --config sim "
+            << "(0.5 m odometry voxels); pass --config to choose another\n";
+        resolved.configs.push_back("sim");
+    }
+    PipelineConfig config = ResolveConfig(resolved);
+    const AutoSettings settings = ConfigureFromData(config, dataset);
+    PrintAutoSettings(log, settings, dataset);
+    config.derived = settings.Describe();
+    for (const auto& warning : settings.warnings) config.derived.push_back("warning: " + warning);
+    return config;
 }
 
 std::unique_ptr<tbb::global_control> LimitThreads(int threads) {

@@ -93,9 +93,14 @@ std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stat
         const std::size_t n = laser->getScanSize();
         const double aperture = options.laser_aperture > 0.0 ? options.laser_aperture : laser->aperture;
         const double step = n > 1 ? aperture / static_cast<double>(n - 1) : 0.0;
+        PlanarBeams beams;
+        beams.ranges.assign(n, 0.f);
+        beams.aperture = aperture;
+        beams.stated_aperture = laser->aperture;
         for (std::size_t i = 0; i < n; ++i) {
             if (!laser->getScanRangeValidity(i)) continue;
             const float range = laser->getScanRange(i);
+            if (std::isfinite(range)) beams.ranges[laser->rightToLeft ? i : n - 1 - i] = range;
             // As CObservation2DRangeScan::getScanAngle, with the aperture possibly overridden.
             const double from_right = -aperture / 2.0 + step * static_cast<double>(i);
             const float angle = static_cast<float>(laser->rightToLeft ? from_right : -from_right);
@@ -105,6 +110,7 @@ std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stat
             }
             scan.points.emplace_back(range * std::cos(angle), range * std::sin(angle), 0.f);
         }
+        scan.planar_beams = std::move(beams);
         return scan;
     }
     if (const auto* rotating = dynamic_cast<const CObservationRotatingScan*>(&obs)) {

@@ -49,7 +49,7 @@ std::string Describe(double value) {
 LidarOdometry::LidarOdometry(const OdometryConfig& config)
     : config_(Validated(config)),
       map_(config.VoxelSize(), config.max_points_per_voxel),
-      threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {}
+      threshold_(config.initial_threshold, config.min_motion_th, config.ThresholdRange()) {}
 
 Eigen::Isometry3d LidarOdometry::PredictMotion(const Scan& scan) {
     if (config_.use_prior && scan.T_odom_sensor && last_T_odom_sensor_) {
@@ -81,6 +81,20 @@ std::string LidarOdometry::DegeneracyReason(const std::vector<Eigen::Vector3d>& 
                Describe(thickness) + " m): motion unobservable";
     }
     return {};
+}
+
+std::size_t LidarOdometry::CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor,
+                                         double radius) const {
+    std::size_t count = 0;
+    for (const auto& p : source) count += map_.FindNearest(T_world_sensor * p, radius) != nullptr;
+    return count;
+}
+
+double LidarOdometry::CorrectionLimit() const {
+    // Before any frame: the initial threshold stands for the expected correction.
+    const double rms = num_corrections_ == 0 ? config_.initial_threshold
+                                             : std::sqrt(sum_squared_corrections_ / static_cast<double>(num_corrections_));
+    return config_.max_correction_factor * std::max({rms, config_.VoxelSize(), config_.min_motion_th});
 }
 
 Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
@@ -119,15 +133,36 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         params.convergence = config_.convergence;
         params.min_correspondences = config_.min_correspondences;
         params.planar = config_.planar;
-        const IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
+        IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
+        // A swaying sensor (handheld, legged) reverses its turns between scans, so constant velocity
+        // can predict the rotation wrongly by more than ICP's basin. When the predicted turn moves
+        // points by more than a voxel, also register from the translation-only prediction and keep
+        // the result more points agree with (within one voxel of the map).
+        Eigen::Isometry3d delta_translation = delta;
+        delta_translation.linear().setIdentity();
+        if (config_.turn_hypothesis && !poses_.empty() &&
+            ModelError(delta_translation.inverse() * delta, config_.ThresholdRange()) > voxel) {
+            const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
+            if (alternative.valid && alternative.T_world_sensor.matrix().allFinite() &&
+                CountAgreeing(source, alternative.T_world_sensor, voxel) > CountAgreeing(source, icp.T_world_sensor, voxel)) {
+                icp = alternative;
+                stats_.turn_hypothesis_used = true;
+            }
+        }
         stats_.iterations = icp.iterations;
         stats_.correspondences = icp.correspondences;
-        const double correction = ModelError(T_predicted.inverse() * icp.T_world_sensor, config_.max_range);
+        // A correction is judged by its translation: the rotation part of the model error grows with
+        // max_range, and a swaying handheld sensor turns 15 deg between keyframes legitimately.
+        const double correction = (T_predicted.inverse() * icp.T_world_sensor).translation().norm();
+        stats_.inlier_ratio = source.empty() ? 0.0 : static_cast<double>(icp.correspondences) / static_cast<double>(source.size());
         if (!icp.valid) {
             problem = "only " + std::to_string(icp.correspondences) + " correspondences within " +
                       Describe(params.max_correspondence_distance) + " m of the map";
         } else if (!icp.T_world_sensor.matrix().allFinite() || !(correction <= config_.max_correction)) {
-            problem = "ICP diverged (correction of " + Describe(correction) + " m model error)";
+            problem = "ICP diverged (correction of " + Describe(correction) + " m)";
+        } else if (config_.max_correction_factor > 0.0 && correction > CorrectionLimit()) {
+            problem = "ICP jumped " + Describe(correction) + " m from the motion prediction (limit " + Describe(CorrectionLimit()) +
+                      " m: " + Describe(config_.max_correction_factor) + " x the RMS of earlier corrections)";
         } else {
             T_new = config_.planar ? ProjectToPlanar(icp.T_world_sensor) : Orthonormalized(icp.T_world_sensor);
         }
@@ -140,6 +175,9 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         ++num_degenerate_;
     } else {
         threshold_.Update(T_predicted.inverse() * T_new);
+        const double correction = (T_predicted.inverse() * T_new).translation().norm();
+        sum_squared_corrections_ += correction * correction;
+        ++num_corrections_;
         std::vector<Eigen::Vector3d> points_in_world(downsampled_.size());
         for (std::size_t i = 0; i < downsampled_.size(); ++i) points_in_world[i] = T_new * downsampled_[i];
         map_.AddPoints(points_in_world);

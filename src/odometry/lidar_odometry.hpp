@@ -22,9 +22,11 @@ struct OdometryFrameStats {
     std::size_t map_points = 0;          ///< after the 0.5 v downsampling (what enters the map)
     std::size_t source_points = 0;       ///< after the 1.5 v downsampling (what is registered)
     std::size_t correspondences = 0;     ///< in the last ICP iteration
+    double inlier_ratio = 0.0;           ///< correspondences / source points
     int iterations = 0;
     double sigma = 0.0;                  ///< [m] adaptive threshold used for this frame
     bool prior_used = false;             ///< the prediction came from Scan::T_odom_sensor
+    bool turn_hypothesis_used = false;   ///< the translation-only prediction registered better
     bool degenerate = false;             ///< pose = prediction, map not updated
     std::string warning;                 ///< why the frame was degenerate
 };
@@ -57,6 +59,11 @@ class LidarOdometry {
     /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
     std::string DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const;
 
+    /// Source points within `radius` of a map point when placed at `T_world_sensor`.
+    std::size_t CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius) const;
+    /// [m] a translation correction beyond this is a jump, not a registration.
+    double CorrectionLimit() const;
+
     OdometryConfig config_;
     VoxelHashMap map_;
     AdaptiveThreshold threshold_;
@@ -67,6 +74,8 @@ class LidarOdometry {
     std::vector<Eigen::Vector3d> downsampled_;
     OdometryFrameStats stats_;
     std::size_t num_degenerate_ = 0;
+    double sum_squared_corrections_ = 0.0;  ///< [m^2] translation corrections of registered frames
+    std::size_t num_corrections_ = 0;
 };
 
 }  // namespace revisit

@@ -18,6 +18,9 @@ struct OdometryConfig {
     // Adaptive threshold (METHOD.md section 1).
     double initial_threshold = 2.0;  ///< [m] sigma before any motion was seen
     double min_motion_th = 0.1;      ///< [m] a frame updates sigma only when its model error exceeds this (KISS-ICP code)
+    /// [m] lever arm of the rotation term of the model error (a rotation error theta moves a point at
+    /// this range by ~range x theta); 0 = max_range (KISS-ICP)
+    double threshold_range = 0.0;
     // ICP.
     /// Paper-era by default (METHOD.md). On the simulated demo city each kernel stalls once: sigma/3
     /// over the first ~100 scans from rest, sigma around scan 2886 (see the issue notes).
@@ -25,8 +28,14 @@ struct OdometryConfig {
     int max_iterations = 500;        ///< Gauss-Newton iterations per frame
     double convergence = 1e-4;       ///< stop when |dx| of an update is below this [m, rad]
     int min_correspondences = 20;    ///< fewer: the frame is degenerate, keep the prediction
-    double max_correction = 20.0;    ///< [m] model error of prediction^-1 * ICP result beyond which ICP is deemed diverged
+    double max_correction = 20.0;    ///< [m] translation of prediction^-1 * ICP result beyond which ICP is deemed diverged
+    /// A frame whose translation correction exceeds this many times the RMS correction of the earlier
+    /// frames (at least one map voxel) jumped to a wrong minimum: it keeps the prediction. 0 = off.
+    double max_correction_factor = 8.0;
     // Motion model and inputs.
+    /// Also register from the translation-only prediction when the predicted turn moves points by more
+    /// than a voxel, keeping the better result (swaying handheld sensors; 2 ICPs on those frames).
+    bool turn_hypothesis = true;
     bool deskew = false;             ///< constant-velocity motion compensation of each sweep
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)
@@ -37,6 +46,8 @@ struct OdometryConfig {
 
     /// The map voxel size actually used [m].
     double VoxelSize() const { return voxel_size > 0.0 ? voxel_size : max_range / 100.0; }
+    /// The lever arm actually used [m].
+    double ThresholdRange() const { return threshold_range > 0.0 ? threshold_range : max_range; }
 };
 
 }  // namespace revisit

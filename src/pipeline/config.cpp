@@ -5,6 +5,8 @@ namespace {
 using Range = ConfigSchema::Range;
 
 void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
+    s.Add("input.auto_settings", &c.input.auto_settings, "",
+          "derive every setting no --config/--set gave from the first scans (ranges, field of view, points per scan); false: the defaults below");
     s.Add("input.kitti_vertical_correction", &c.input.kitti_vertical_correction, "",
           "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (METHOD.md 1)");
     s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all)");
@@ -17,12 +19,18 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.max_points_per_voxel", &o.max_points_per_voxel, "", "map points per voxel (KISS-ICP: 20)", Range{1, 100});
     s.Add("odometry.initial_threshold", &o.initial_threshold, "m", "adaptive threshold before motion (KISS-ICP: 2.0)", Range{0.01, 100});
     s.Add("odometry.min_motion_th", &o.min_motion_th, "m", "a frame updates the threshold only above this motion (KISS-ICP: 0.1)", Range{0, 10});
+    s.Add("odometry.threshold_range", &o.threshold_range, "m",
+          "lever arm of the adaptive threshold's rotation term; 0 = max_range (KISS-ICP)", Range{0, 1000});
     s.AddEnum("odometry.kernel", &o.kernel, {{"paper", IcpKernel::kPaper}, {"later", IcpKernel::kLater}},
               "Geman-McClure scale: paper-era sigma/3, later sigma (METHOD.md 1)");
     s.Add("odometry.max_iterations", &o.max_iterations, "", "ICP iterations per frame (KISS-ICP: 500)", Range{1, 10000});
     s.Add("odometry.convergence", &o.convergence, "", "stop when the update norm is below (KISS-ICP: 1e-4)", Range{1e-12, 1});
     s.Add("odometry.min_correspondences", &o.min_correspondences, "", "fewer: keep the motion prediction", Range{3, 1000000});
-    s.Add("odometry.max_correction", &o.max_correction, "m", "ICP result this far from the prediction is deemed diverged", Range{0.01, 1000});
+    s.Add("odometry.max_correction", &o.max_correction, "m", "ICP result this far (translation) from the prediction is deemed diverged", Range{0.01, 1000});
+    s.Add("odometry.max_correction_factor", &o.max_correction_factor, "",
+          "a correction above this x the RMS of earlier corrections (>= one voxel) is a jump: the frame keeps the prediction; 0 = off", Range{0, 1000});
+    s.Add("odometry.turn_hypothesis", &o.turn_hypothesis, "",
+          "when the predicted turn moves points by more than a voxel, also register without it and keep the better (swaying sensors)");
     s.Add("odometry.deskew", &o.deskew, "", "constant-velocity motion compensation (paper-era: off)");
     s.Add("odometry.azimuth_clockwise", &o.azimuth_clockwise, "", "deskew without point times: sweep direction (KITTI: clockwise)");
     s.Add("odometry.planar", &o.planar, "", "estimate x, y, yaw only (2D lasers)");
@@ -165,6 +173,7 @@ PipelineConfig LoadConfig(const std::vector<std::string>& files, const std::vect
     auto schema = MakeConfigSchema(config);
     for (const auto& file : files) schema.ApplyFile(file);
     for (const auto& assignment : overrides) schema.ApplyOverride(assignment);
+    config.explicit_keys = schema.assigned();
     return config;
 }
 

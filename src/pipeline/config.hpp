@@ -1,6 +1,7 @@
 #pragma once
 /// Every parameter of a run, grouped by stage, with the one schema that reads and writes them as
 /// YAML (configs/default.yaml documents each with its unit and source).
+#include <set>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@
 namespace revisit {
 
 struct InputConfig {
+    /// Derive the settings no file or --set gave from the first scans (src/pipeline/auto_settings.hpp).
+    bool auto_settings = true;
     bool kitti_vertical_correction = false;  ///< KITTI HDL-64E: rotate points by 0.205 deg (configs/kitti.yaml)
     std::string sensor_label;                ///< rawlogs: only this sensor ("" = all)
     double laser_aperture_deg = 0.0;         ///< [deg] 2D lasers: replaces the file's aperture (0: keep)
@@ -65,6 +68,10 @@ struct PipelineConfig {
     PredictedClosureConfig predicted;
     ScanContextConfig scan_context;
     OutputConfig output;
+    /// Keys a config file or --set gave a value (LoadConfig fills it): automatic settings leave them alone.
+    std::set<std::string> explicit_keys;
+    /// Settings derived from the data and why (src/pipeline/auto_settings.hpp), for config.yaml and run.json.
+    std::vector<std::string> derived;
 };
 
 /// The schema bound to `config`'s fields (`config` must outlive it).

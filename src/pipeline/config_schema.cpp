@@ -72,8 +72,25 @@ void ConfigSchema::ThrowBadChoice(const std::string& key, const std::string& nam
     throw ConfigError(key + ": '" + name + "' is not one of: " + names);
 }
 
+std::optional<double> ConfigSchema::Number(const std::string& key) const {
+    const auto it = index_.find(key);
+    if (it == index_.end()) return std::nullopt;
+    return std::visit(
+        [](auto&& field) -> std::optional<double> {
+            using F = std::decay_t<decltype(field)>;
+            if constexpr (std::is_same_v<F, double*> || std::is_same_v<F, int*> || std::is_same_v<F, std::uint32_t*> ||
+                          std::is_same_v<F, std::size_t*> || std::is_same_v<F, bool*>) {
+                return static_cast<double>(*field);
+            } else {
+                return std::nullopt;
+            }
+        },
+        entries_[it->second].field);
+}
+
 void ConfigSchema::SetValue(const Entry& entry, const YAML::Node& value, const std::string& source) {
     const std::string where = source + ": " + entry.key;
+    assigned_.insert(entry.key);
     if (!value.IsScalar()) throw ConfigError(where + ": expected a single value, got '" + YAML::Dump(value) + "'");
     const auto check_range = [&](double v) {
         if (!std::isfinite(v)) throw ConfigError(where + ": value must be finite");

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <variant>
@@ -77,6 +78,11 @@ class ConfigSchema {
     /// The valid key closest to `key` by edit distance (for "did you mean").
     std::string ClosestKey(const std::string& key) const;
 
+    /// Keys given a value by a file or an override so far (what automatic settings must not change).
+    const std::set<std::string>& assigned() const { return assigned_; }
+    /// The current value of a numeric or boolean key as a number (nullopt for strings, enums, unknown keys).
+    std::optional<double> Number(const std::string& key) const;
+
   private:
     [[noreturn]] static void ThrowBadChoice(const std::string& key, const std::string& name, const std::string& names);
     void SetValue(const Entry& entry, const YAML::Node& value, const std::string& source);
@@ -84,6 +90,7 @@ class ConfigSchema {
 
     std::vector<Entry> entries_;
     std::map<std::string, std::size_t> index_;
+    std::set<std::string> assigned_;
 };
 
 }  // namespace revisit

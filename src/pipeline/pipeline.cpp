@@ -112,7 +112,12 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     const ReferenceSource ground_truth(options.gt_file);
     const RunFolder run = RunFolder::Create(options.out, options.force);
     WriteRunOptions(run, options);
-    std::ofstream(run.config()) << DumpConfig(config);
+    {
+        std::ofstream out(run.config());
+        if (!config.derived.empty()) out << "# Settings derived from the data (revisit run prints why):\n";
+        for (const auto& line : config.derived) out << "#   " << line << '\n';
+        out << DumpConfig(config);
+    }
 
     // The ablation only matters when it can be scored.
     PipelineConfig effective = config;

@@ -58,6 +58,12 @@ void Progress::Update(std::size_t done, const std::string& extra) {
     printed_ = true;
 }
 
+void Progress::Message(const std::string& line) {
+    if (mode_ == Mode::kTerminal && printed_) out_ << "\r\033[K";
+    out_ << line << '\n' << std::flush;
+    last_print_ = std::chrono::steady_clock::time_point{};  // redraw the bar at the next update
+}
+
 void Progress::Finish(std::size_t done, const std::string& extra) {
     if (mode_ == Mode::kQuiet) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

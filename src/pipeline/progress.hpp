@@ -21,6 +21,8 @@ class Progress {
 
     /// `extra` is appended, e.g. "maps 12  closures 3". Throttled: cheap to call every item.
     void Update(std::size_t done, const std::string& extra = "");
+    /// A line of its own (a warning), printed even when quiet, without breaking the bar.
+    void Message(const std::string& line);
     /// Clears the bar (terminal) and prints the final rate.
     void Finish(std::size_t done, const std::string& extra = "");
 

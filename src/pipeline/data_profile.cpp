@@ -1,0 +1,122 @@
+#include "pipeline/data_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <unordered_set>
+
+#include <cstdint>
+
+namespace revisit {
+namespace {
+
+/// Points kept per scan for the percentiles: enough for 1% quantiles, cheap for 125k-point scans.
+constexpr std::size_t kSamplesPerScan = 4096;
+
+double Quantile(std::vector<double> values, double q) {
+    if (values.empty()) return 0.0;
+    const std::size_t k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    return values[k];
+}
+
+std::string Fixed(double value, int digits) {
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(digits) << value;
+    return out.str();
+}
+
+/// Scans whose downsampled size is counted (a full pass over their points per candidate).
+constexpr std::size_t kVoxelCountScans = 5;
+
+std::size_t OccupiedVoxels(const std::vector<Eigen::Vector3f>& points, double voxel) {
+    std::unordered_set<std::uint64_t> occupied;
+    occupied.reserve(points.size() / 4);
+    for (const auto& p : points) {
+        const auto key = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / voxel)) & 0x1FFFFF); };
+        occupied.insert(key(p.x()) << 42 | key(p.y()) << 21 | key(p.z()));
+    }
+    return occupied.size();
+}
+
+}  // namespace
+
+const std::vector<double>& VoxelCandidates() {
+    static const std::vector<double> candidates = {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.6, 0.75, 1.0};
+    return candidates;
+}
+
+bool DataProfiler::Add(const Scan& scan) {
+    if (Done()) return false;
+    if (scan.points.empty()) return true;
+    ++scans_;
+    points_per_scan_.push_back(static_cast<double>(scan.points.size()));
+    timestamps_.push_back(scan.timestamp);
+    point_times_ = point_times_ || scan.has_point_times();
+    odometry_prior_ = odometry_prior_ || scan.T_odom_sensor.has_value();
+    if (scans_ <= kVoxelCountScans) {
+        source_points_.resize(VoxelCandidates().size());
+        for (std::size_t k = 0; k < VoxelCandidates().size(); ++k) {
+            source_points_[k].push_back(static_cast<double>(OccupiedVoxels(scan.points, 1.5 * VoxelCandidates()[k])));
+        }
+    }
+    const std::size_t stride = std::max<std::size_t>(1, scan.points.size() / kSamplesPerScan);
+    for (std::size_t i = 0; i < scan.points.size(); i += stride) {
+        const Eigen::Vector3d p = scan.points[i].cast<double>();
+        const double range = p.norm();
+        if (!(range > 0.0)) continue;
+        if (p.z() != 0.0) planar_ = false;
+        ranges_.push_back(range);
+        elevations_.push_back(std::asin(std::clamp(p.z() / range, -1.0, 1.0)) * 180.0 / M_PI);
+        const double azimuth = std::atan2(p.y(), p.x()) * 180.0 / M_PI + 180.0;
+        azimuth_bins_[static_cast<std::size_t>(std::clamp(azimuth, 0.0, 359.999))] = true;
+    }
+    return !Done();
+}
+
+DataProfile DataProfiler::Profile() const {
+    DataProfile profile;
+    profile.scans = scans_;
+    if (scans_ == 0) return profile;
+    profile.planar = planar_;
+    profile.points_per_scan = Quantile(points_per_scan_, 0.5);
+    profile.range_p01 = Quantile(ranges_, 0.01);
+    profile.range_p50 = Quantile(ranges_, 0.5);
+    profile.range_p95 = Quantile(ranges_, 0.95);
+    profile.range_p99 = Quantile(ranges_, 0.99);
+    profile.range_max = ranges_.empty() ? 0.0 : *std::max_element(ranges_.begin(), ranges_.end());
+    profile.horizontal_fov_deg = static_cast<double>(std::count(azimuth_bins_.begin(), azimuth_bins_.end(), true));
+    profile.vertical_fov_deg = planar_ ? 0.0 : Quantile(elevations_, 0.99) - Quantile(elevations_, 0.01);
+    std::vector<double> periods;
+    for (std::size_t i = 1; i < timestamps_.size(); ++i) {
+        const double dt = timestamps_[i] - timestamps_[i - 1];
+        if (dt > 0.0) periods.push_back(dt);
+    }
+    profile.scan_period = Quantile(periods, 0.5);
+    profile.has_point_times = point_times_;
+    profile.has_odometry_prior = odometry_prior_;
+    profile.voxel_candidates = VoxelCandidates();
+    for (const auto& counts : source_points_) profile.source_points.push_back(Quantile(counts, 0.5));
+    return profile;
+}
+
+std::vector<std::string> DataProfile::Describe() const {
+    if (empty()) return {"no scan with points"};
+    std::vector<std::string> lines;
+    lines.push_back(std::string(planar ? "2D laser" : "3D") + ", " + Fixed(points_per_scan, 0) + " points per scan (median of " +
+                    std::to_string(scans) + " scans)");
+    lines.push_back("ranges: 1% " + Fixed(range_p01, 2) + " m, median " + Fixed(range_p50, 2) + " m, 95% " + Fixed(range_p95, 1) +
+                    " m, 99% " + Fixed(range_p99, 1) + " m, max " + Fixed(range_max, 1) + " m");
+    std::string fov = "field of view: " + Fixed(horizontal_fov_deg, 0) + " deg horizontal";
+    if (!planar) fov += ", " + Fixed(vertical_fov_deg, 1) + " deg vertical (1-99% of the points)";
+    lines.push_back(fov);
+    std::string timing = scan_period > 0.0 ? "scan period " + Fixed(scan_period, 3) + " s (" + Fixed(1.0 / scan_period, 1) + " Hz)"
+                                           : "scan period unknown (no time stamps)";
+    timing += has_point_times ? ", per-point times" : ", no per-point times";
+    timing += has_odometry_prior ? ", odometry prior" : "";
+    lines.push_back(timing);
+    return lines;
+}
+
+}  // namespace revisit
