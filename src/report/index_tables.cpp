@@ -23,8 +23,8 @@ std::string Count(std::size_t n) { return std::to_string(n); }
 
 std::string ClosureStatus(const ClosureEntry& entry) {
     if (entry.accepted) return "accepted";
-    if (entry.verified) return "verified";
-    if (entry.reached_threshold) return "rejected";
+    if (entry.verified) return "graph-rejected";
+    if (entry.reached_threshold) return "verification failed";
     return "below threshold";
 }
 

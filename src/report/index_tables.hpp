@@ -10,8 +10,8 @@
 
 namespace revisit {
 
-/// "accepted", "verified" (passed 3D verification, then rejected by the pose graph), "rejected" (failed
-/// verification) or "below threshold" (never verified).
+/// "accepted", "graph-rejected" (passed 3D verification, then rejected by the pose graph), "verification
+/// failed" or "below threshold" (never verified).
 std::string ClosureStatus(const ClosureEntry& entry);
 
 /// Candidates, how many reached the threshold, were verified, accepted, rejected; true/false when known; pages.

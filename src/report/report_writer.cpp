@@ -170,7 +170,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     index.Raw("<nav>" + HtmlLink("#summary", "summary") + HtmlLink("#overview", "overview") +
               HtmlLink("#metrics", "metrics") + HtmlLink("#closures", "closures") +
               HtmlLink("#candidates", "all candidates") + HtmlLink("#maps", "local maps") +
-              HtmlLink("#config", "configuration") + "</nav>\n");
+              HtmlLink("#timing", "timing") + HtmlLink("#config", "configuration") + "</nav>\n");
 
     index.Heading("Summary", 2, "summary");
     if (!input.dataset_summary.empty()) index.List(input.dataset_summary);
@@ -178,16 +178,6 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     index.KeyValueTable(GlanceCounts(input, plan));
     index.Raw("</div>\n");
     if (!input.counts.empty()) index.KeyValueTable(input.counts);
-    if (!input.timings.empty()) {
-        std::vector<std::pair<std::string, std::string>> rows;
-        double total = 0.0;
-        for (const auto& t : input.timings) rows.emplace_back(t.stage, FormatNumber(t.seconds, 2) + " s"), total += t.seconds;
-        rows.emplace_back("total", FormatNumber(total, 2) + " s");
-        index.KeyValueTable(rows);
-        WriteText(report_dir / "timing.svg", TimingSvg(input.timings));
-        ++stats.images;
-        index.Figure("timing.svg", "time per stage");
-    }
 
     index.Heading("Overview", 2, "overview");
     const OverviewData overview = MakeOverviewData(input);
@@ -252,6 +242,19 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     }
     index.Raw(maps + "</div>\n");
     AddMapTable(index, input, plan);
+
+    index.Heading("Time per stage", 2, "timing");
+    if (input.timings.empty()) index.Paragraph("Not recorded.");
+    if (!input.timings.empty()) {
+        std::vector<std::pair<std::string, std::string>> rows;
+        double total = 0.0;
+        for (const auto& t : input.timings) rows.emplace_back(t.stage, FormatNumber(t.seconds, 2) + " s"), total += t.seconds;
+        rows.emplace_back("total", FormatNumber(total, 2) + " s");
+        index.KeyValueTable(rows);
+        WriteText(report_dir / "timing.svg", TimingSvg(input.timings));
+        ++stats.images;
+        index.Figure("timing.svg", "time per stage");
+    }
 
     index.Heading("Configuration", 2, "config");
     index.Preformatted(input.config_text.empty() ? "(not recorded)" : input.config_text);
