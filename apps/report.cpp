@@ -18,16 +18,6 @@ struct ReportOptions {
     bool quiet = false;
 };
 
-/// The report settings of the run's own configuration (output.report_candidates), with --set on top.
-ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string>& overrides) {
-    const PipelineConfig config =
-        LoadConfig(std::filesystem::exists(run.config()) ? std::vector<std::string>{run.config().string()} : std::vector<std::string>{},
-                   overrides);
-    ReportConfig report;
-    report.strongest_candidates = config.output.report_candidates;
-    return report;
-}
-
 int RunReport(const ReportOptions& o) {
     const auto threads = LimitThreads(o.threads);
     const RunFolder run = RunFolder::Open(o.run);

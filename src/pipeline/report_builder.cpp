@@ -202,14 +202,18 @@ ReportInput LoadReportInput(const RunFolder& run) {
     return input;
 }
 
-double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOptions& options) {
-    const auto start = std::chrono::steady_clock::now();
-    // The run's own configuration decides how many candidate pages (output.report_candidates).
+ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string>& overrides) {
     const PipelineConfig config =
         LoadConfig(fs::exists(run.config()) ? std::vector<std::string>{run.config().string()} : std::vector<std::string>{},
-                   options.overrides);
-    ReportConfig report_config;
-    report_config.strongest_candidates = config.output.report_candidates;
+                   overrides);
+    ReportConfig report;
+    report.strongest_candidates = config.output.report_candidates;
+    return report;
+}
+
+double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const ReportConfig report_config = RunReportConfig(run, options.overrides);
     // report/ is regenerated: pages of an earlier report (or of `inspect`) would be stale and unlinked.
     if (fs::is_directory(run.report_dir()))
         for (const auto& file : fs::directory_iterator(run.report_dir())) {

@@ -7,11 +7,15 @@
 #include "pipeline/config.hpp"
 #include "pipeline/run_folder.hpp"
 #include "report/report_input.hpp"
+#include "report/report_writer.hpp"
 
 namespace revisit {
 
 /// Everything the report shows, read from the run folder; maps and density images load on demand.
 ReportInput LoadReportInput(const RunFolder& run);
+
+/// The report settings of the run's own configuration (output.report_candidates), `overrides` (key=value) on top.
+ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string>& overrides = {});
 
 struct ReportRunOptions {
     bool quiet = false;                   ///< no progress line
