@@ -4,18 +4,24 @@
 #include "commands.hpp"
 #include "pipeline/report_builder.hpp"
 #include "report/report_writer.hpp"
+#include "run_options.hpp"
 
 namespace revisit::app {
 namespace {
 struct ReportOptions {
     std::string run;
     int closure = -1;
+    int map = -1;
     std::vector<int> maps;
+    std::vector<std::string> overrides;
+    int threads = 0;
+    bool quiet = false;
 };
 
 int RunReport(const ReportOptions& o) {
+    const auto threads = LimitThreads(o.threads);
     const RunFolder run = RunFolder::Open(o.run);
-    WriteRunReport(run, std::cerr);
+    WriteRunReport(run, std::cerr, {o.quiet, o.overrides});
     std::cout << run.report_index().string() << '\n';
     return 0;
 }
@@ -23,20 +29,26 @@ int RunReport(const ReportOptions& o) {
 int RunInspect(const ReportOptions& o) {
     const RunFolder run = RunFolder::Open(o.run);
     const ReportInput input = LoadReportInput(run);
+    const ReportConfig config = RunReportConfig(run, {});
     if (o.closure >= 0) {
         if (o.closure >= static_cast<int>(input.closures.size())) {
             std::cerr << "revisit: " << o.run << " has " << input.closures.size() << " closures (0 .. "
                       << static_cast<int>(input.closures.size()) - 1 << "); no closure " << o.closure << '\n';
             return 1;
         }
-        std::cout << WriteClosurePage(input, static_cast<std::size_t>(o.closure), run.report_dir()).string() << '\n';
+        std::cout << WriteClosurePage(input, static_cast<std::size_t>(o.closure), run.report_dir(), config).string() << '\n';
+        return 0;
+    }
+    if (o.map >= 0) {
+        // An unknown id throws std::out_of_range naming the run's map count.
+        std::cout << WriteSingleMapPage(input, o.map, run.report_dir(), config).string() << '\n';
         return 0;
     }
     if (o.maps.size() != 2) {
-        std::cerr << "revisit: inspect needs --closure N or --maps A B\n";
+        std::cerr << "revisit: inspect needs --closure N, --map N or --maps A B\n";
         return 1;
     }
-    std::cout << WriteMapPairPage(input, o.maps[0], o.maps[1], run.report_dir()).string() << '\n';
+    std::cout << WriteMapPairPage(input, o.maps[0], o.maps[1], run.report_dir(), config).string() << '\n';
     return 0;
 }
 }  // namespace
@@ -44,22 +56,38 @@ int RunInspect(const ReportOptions& o) {
 void AddReportCommands(CLI::App& root, Action& action) {
     auto o = std::make_shared<ReportOptions>();
     auto* report = root.add_subcommand("report", "Regenerate the HTML report of a run folder");
-    report->footer("Draws every picture from the run folder alone (nothing is recomputed).\nExample:\n  revisit report reports/latest");
+    report->footer(
+        "Draws every picture from the run folder alone (nothing is recomputed); replaces the pages in RUN_DIR/report/.\n"
+        "Pages for every closure that reached the acceptance threshold and for the output.report_candidates\n"
+        "strongest candidates below it; every candidate is a row of the index's table (`revisit inspect` renders\n"
+        "the others). Templates and style: share/report/ (REVISIT_SHARE_DIR overrides).\n"
+        "Examples:\n"
+        "  revisit report reports/latest\n"
+        "  revisit report reports/latest --set output.report_candidates=100 --threads 2");
     report->add_option("run", o->run, "run folder")->required();
+    report->add_option("--set", o->overrides, "key=value over the run's configuration (output.report_candidates)");
+    report->add_option("--threads", o->threads, "pages rendered in parallel (default: all cores; the files do not depend on it)");
+    report->add_flag("--quiet", o->quiet, "no progress output");
     report->callback([o, &action] { action = [o] { return RunReport(*o); }; });
 
-    auto* inspect = root.add_subcommand("inspect", "Render one closure, or any two local maps, side by side");
+    auto* inspect = root.add_subcommand("inspect", "Render one closure, one local map, or any two local maps side by side");
     inspect->footer(
-        "--closure N: the page of closure N (its index in closures.csv among density-map closures).\n"
+        "--closure N: the page of closure candidate N (its index in closures.csv among density-map closures; the\n"
+        "report's table lists every one).\n"
+        "--map N: the page of local map N.\n"
         "--maps A B: the same comparison for any two local maps at their odometry relative pose, to see why\n"
         "a closure was missed. Writes into RUN_DIR/report/ and prints the page's path.\n"
         "Examples:\n"
         "  revisit inspect reports/latest --closure 3\n"
+        "  revisit inspect reports/latest --map 12\n"
         "  revisit inspect reports/latest --maps 41 2");
     inspect->add_option("run", o->run, "run folder")->required();
     auto* closure = inspect->add_option("--closure", o->closure, "closure index");
+    auto* map = inspect->add_option("--map", o->map, "local map id");
     auto* maps = inspect->add_option("--maps", o->maps, "two local map ids: query and reference")->expected(2);
     closure->excludes(maps);
+    closure->excludes(map);
+    map->excludes(maps);
     inspect->callback([o, &action] { action = [o] { return RunInspect(*o); }; });
 }
 

@@ -152,6 +152,8 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     s.Add("output.map_voxel", &o.map_voxel, "m", "local maps stored in the run folder", Range{0.01, 100});
     s.Add("output.global_map_voxel", &o.global_map_voxel, "m", "corrected global map (PLY)", Range{0.01, 100});
     s.Add("output.write_report", &o.write_report, "", "render report/index.html");
+    s.Add("output.report_candidates", &o.report_candidates, "",
+          "report pages for the strongest candidates below the acceptance threshold (others: table rows)", Range{0, 1e6});
     s.Add("output.scan_context", &o.scan_context, "", "run the ScanContext baseline when ground truth exists");
     s.Add("output.elevation_ablation", &o.elevation_ablation, "", "score the elevation-image ablation when ground truth exists");
 }

@@ -43,6 +43,9 @@ struct OutputConfig {
     double map_voxel = 0.5;      ///< [m] downsampling of each local map stored in the run folder
     double global_map_voxel = 0.5;  ///< [m] downsampling of the corrected global map (PLY)
     bool write_report = true;    ///< render report/index.html at the end
+    /// Report pages for this many of the strongest candidates below the acceptance threshold, besides every
+    /// closure that reached it; the others are rows of the index's table (`revisit inspect` renders them).
+    int report_candidates = 20;
     bool scan_context = true;    ///< also run the ScanContext baseline when ground truth exists
     bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
 };

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <sstream>
 
@@ -15,6 +16,7 @@
 #include "evaluation/trajectory_metrics.hpp"
 #include "pipeline/csv.hpp"
 #include "pipeline/folder_map_store.hpp"
+#include "pipeline/progress.hpp"
 #include "io/cloud_files.hpp"
 #include "pipeline/run_files.hpp"
 #include "report/html_page.hpp"
@@ -60,12 +62,19 @@ std::vector<PrCurve> ReadPrCurves(const RunFolder& run) {
     return curves;
 }
 
-TextTable ReadMetricsTable(const RunFolder& run) {
-    TextTable table;
+/// The metrics table and, when the evaluation counted them, the true and false closures (top-level
+/// "true_closures" / "false_closures" of metrics.json).
+void ReadMetrics(const RunFolder& run, ReportInput& input) {
     std::ifstream in(run.metrics_json());
-    if (!in) return table;
+    if (!in) return;
     const auto metrics = nlohmann::json::parse(in, nullptr, false);
-    if (metrics.is_discarded() || !metrics.contains("methods")) return table;
+    if (metrics.is_discarded() || !metrics.is_object()) return;
+    if (metrics.contains("true_closures") && metrics["true_closures"].is_number_integer())
+        input.true_closures = metrics["true_closures"].get<int>();
+    if (metrics.contains("false_closures") && metrics["false_closures"].is_number_integer())
+        input.false_closures = metrics["false_closures"].get<int>();
+    if (!metrics.contains("methods")) return;
+    TextTable& table = input.metrics;
     table.header = {"method", "precision", "recall", "F1", "recall @ 100% P", "APE before [m]", "APE after [m]"};
     const auto number = [](const nlohmann::json& value, int decimals) {
         return value.is_number() ? FormatNumber(value.get<double>(), decimals) : std::string("-");
@@ -75,7 +84,6 @@ TextTable ReadMetricsTable(const RunFolder& run) {
                               number(m["recall_at_100_precision"], 3), number(m["ape_rmse_before_m"], 2),
                               number(m["ape_rmse_after_m"], 2)});
     }
-    return table;
 }
 
 }  // namespace
@@ -89,11 +97,11 @@ ReportInput LoadReportInput(const RunFolder& run) {
                              "length: " + FormatNumber(PathLength(state.odometry), 1) + " m",
                              state.complete ? "run complete" : "run INCOMPLETE (interrupted)"};
     input.config_text = ReadText(run.config());
+    // Closure counts are the index's "at a glance" table (from input.closures); these are the run's.
     input.counts = {{"scans", std::to_string(state.odometry.size())},
                     {"local maps", std::to_string(state.maps.size())},
-                    {"closures (all methods, >= 3 inliers)", std::to_string(state.closures.size())},
-                    {"closures accepted into the pose graph", std::to_string(state.NumAccepted())},
-                    {"wall time [s]", FormatNumber(state.wall_seconds, 1)}};
+                    {"chain wall time (before evaluation and report) [s]", FormatNumber(state.wall_seconds, 1)}};
+    input.inspect_command = "revisit inspect " + run.root().string();
     for (const auto& [stage, timer] : state.timings) {
         if (stage.find('.') == std::string::npos) input.timings.push_back({stage, timer.total_ms / 1000.0});
     }
@@ -113,6 +121,8 @@ ReportInput LoadReportInput(const RunFolder& run) {
         ClosureEntry entry;
         entry.closure = record.closure;
         entry.accepted = record.accepted;
+        entry.reached_threshold = record.refined;
+        entry.verified = record.refined && record.refinement.accepted;
         entry.reason = record.accepted ? "accepted (graph weight " + FormatNumber(record.graph_weight, 2) + ")" : record.reason;
         if (record.refined) {
             entry.fitness = record.refinement.overlap;
@@ -132,7 +142,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
     input.pr_curves = ReadPrCurves(run);
     input.ape_before = ApeSeries(state, state.odometry);
     input.ape_after = ApeSeries(state, state.corrected);
-    input.metrics = ReadMetricsTable(run);
+    ReadMetrics(run, input);
     const auto maps = std::make_shared<std::vector<MapRecordSummary>>(state.maps);
     input.load_local_map = [run, maps](int id) -> std::optional<LocalMap> {
         if (id < 0 || id >= static_cast<int>(maps->size()) || !fs::exists(run.map_points(id))) return std::nullopt;
@@ -154,11 +164,19 @@ ReportInput LoadReportInput(const RunFolder& run) {
         if (image.image.empty()) return std::nullopt;
         return image;
     };
-    for (const auto& m : state.maps) input.map_ids.push_back(m.id);
-    // Keypoints live in the closure database: loaded once, on first use; without it pictures lack keypoints.
-    auto keypoints = std::make_shared<std::optional<std::map<int, std::vector<Eigen::Vector2f>>>>();
+    for (const auto& m : state.maps) {
+        input.map_ids.push_back(m.id);
+        input.map_scans.push_back({m.first_scan, m.last_scan});
+    }
+    // Keypoints live in the closure database: loaded once, on first use (pages render in parallel: call_once);
+    // without it pictures lack keypoints.
+    struct KeypointCache {
+        std::once_flag loaded;
+        std::map<int, std::vector<Eigen::Vector2f>> by_id;
+    };
+    auto keypoints = std::make_shared<KeypointCache>();
     input.load_keypoints = [run, keypoints](int id) {
-        if (!*keypoints) {
+        std::call_once(keypoints->loaded, [&] {
             std::map<int, std::vector<Eigen::Vector2f>> by_id;
             try {
                 const auto detector = LoadDatabase(run.database(), LoadConfig({run.config().string()}, {}).detector);
@@ -171,10 +189,10 @@ ReportInput LoadReportInput(const RunFolder& run) {
                 // No database, or one this build cannot read: the pages are still useful without keypoints
                 // (`revisit inspect` and `LoadDatabase` report the database's own error).
             }
-            *keypoints = std::move(by_id);
-        }
-        const auto it = (*keypoints)->find(id);
-        return it == (*keypoints)->end() ? std::vector<Eigen::Vector2f>{} : it->second;
+            keypoints->by_id = std::move(by_id);
+        });
+        const auto it = keypoints->by_id.find(id);
+        return it == keypoints->by_id.end() ? std::vector<Eigen::Vector2f>{} : it->second;
     };
     input.load_global_map = [run]() {
         std::vector<Eigen::Vector3f> points;
@@ -184,11 +202,34 @@ ReportInput LoadReportInput(const RunFolder& run) {
     return input;
 }
 
-void WriteRunReport(const RunFolder& run, std::ostream& log) {
+ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string>& overrides) {
+    const PipelineConfig config =
+        LoadConfig(fs::exists(run.config()) ? std::vector<std::string>{run.config().string()} : std::vector<std::string>{},
+                   overrides);
+    ReportConfig report;
+    report.strongest_candidates = config.output.report_candidates;
+    return report;
+}
+
+double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOptions& options) {
     const auto start = std::chrono::steady_clock::now();
-    const auto stats = WriteReport(LoadReportInput(run), run.report_dir());
+    const ReportConfig report_config = RunReportConfig(run, options.overrides);
+    // report/ is regenerated: pages of an earlier report (or of `inspect`) would be stale and unlinked.
+    if (fs::is_directory(run.report_dir()))
+        for (const auto& file : fs::directory_iterator(run.report_dir())) {
+            const auto ext = file.path().extension();
+            if (file.is_regular_file() && (ext == ".html" || ext == ".png" || ext == ".svg")) fs::remove(file.path());
+        }
+    const ReportInput input = LoadReportInput(run);
+    std::optional<Progress> progress;
+    const auto stats = WriteReport(input, run.report_dir(), report_config, [&](std::size_t done, std::size_t total) {
+        if (!progress) progress.emplace(log, Progress::DetectMode(options.quiet), total, "pages");
+        if (done < total) progress->Update(done);
+        else progress->Finish(done);
+    });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log << "report: " << stats.pages << " pages, " << stats.images << " pictures in " << FormatNumber(seconds, 1) << " s\n";
+    return seconds;
 }
 
 }  // namespace revisit

@@ -4,20 +4,25 @@
 #include "pipeline/report_builder.hpp"
 #include "pipeline/summary.hpp"
 
+#include <chrono>
+
 namespace revisit {
 
 RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, std::ostream& log, std::ostream& out) {
     const RunState state = RunPipeline(options, config, log);
     const RunFolder run(options.out);
     std::optional<RunEvaluation> evaluation;
+    PostRunSeconds after_chain;
     if (state.complete) {
+        const auto start = std::chrono::steady_clock::now();
         evaluation = EvaluateRun(run, state, options, config, log);
-        if (config.output.write_report) WriteRunReport(run, log);
+        after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (config.output.write_report) after_chain.report = WriteRunReport(run, log, {options.quiet, {}});
     } else {
         log << "skipped evaluation and report; finish them with `revisit eval " << run.root().string()
             << "` and `revisit report " << run.root().string() << "`\n";
     }
-    PrintRunSummary(out, state, evaluation);
+    PrintRunSummary(out, state, evaluation, after_chain);
     out << "\nrun folder: " << run.root().string() << '\n';
     if (state.complete && config.output.write_report) out << "report:     " << run.report_index().string() << '\n';
     return state;

@@ -2,10 +2,33 @@
 
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace revisit {
 
-void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation) {
+namespace {
+constexpr double kApeResolution = 0.01;         ///< [m] the summary prints APE in centimetres
+constexpr double kApeUnchangedFraction = 0.005;  ///< relative changes below this are noise
+}  // namespace
+
+std::string DescribeApeChange(double before_m, double after_m) {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(2) << before_m << " m -> " << after_m << " m (";
+    const double change_m = after_m - before_m;
+    if (std::abs(change_m) < kApeResolution || std::abs(change_m) < kApeUnchangedFraction * before_m) {
+        text << "unchanged)";
+    } else if (before_m < kApeResolution) {
+        text << (change_m > 0 ? "+" : "") << change_m << " m" << (change_m > 0 ? ": the closures made it worse)" : ")");
+    } else {
+        const double percent = 100.0 * change_m / before_m;
+        text << std::setprecision(0) << std::abs(percent)
+             << (percent < 0.0 ? "% lower)" : "% higher: the closures made it worse)");
+    }
+    return text.str();
+}
+
+void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation,
+                     const PostRunSeconds& after_chain) {
     std::size_t density = 0, refined = 0, verified = 0;
     for (const auto& c : state.closures) {
         density += c.method == "density";
@@ -17,8 +40,12 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
         << "  local maps        " << state.maps.size() << '\n'
         << "  closures          " << density << " detected (>= 3 inliers), " << refined << " refined in 3D, " << verified
         << " verified, " << state.NumAccepted() << " accepted by the pose graph\n"
-        << "  wall time         " << state.wall_seconds << " s (" << (state.wall_seconds > 0 ? state.odometry.size() / state.wall_seconds : 0.0)
-        << " scans/s), peak memory " << state.peak_rss_kb / 1024 << " MiB\n\n";
+        << "  wall time         " << state.wall_seconds + after_chain.evaluation.value_or(0.0) + after_chain.report.value_or(0.0)
+        << " s: chain " << state.wall_seconds << " s ("
+        << (state.wall_seconds > 0 ? state.odometry.size() / state.wall_seconds : 0.0) << " scans/s)";
+    if (after_chain.evaluation) out << ", evaluation " << *after_chain.evaluation << " s";
+    if (after_chain.report) out << ", report " << *after_chain.report << " s";
+    out << "; peak memory of the chain " << state.peak_rss_kb / 1024 << " MiB\n\n";
     out << "  stage                           total [s]    mean [ms]    calls\n";
     for (const auto& [stage, timer] : state.timings) {
         if (timer.count == 0) continue;
@@ -46,13 +73,8 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     }
     const auto& before = evaluation->odometry.ape.errors.translation_stats;
     const auto& after = evaluation->corrected.ape.errors.translation_stats;
-    if (before.rmse > 0) {
-        const double change = 100.0 * (after.rmse / before.rmse - 1.0);
-        out << "\n  APE translation RMSE: " << before.rmse << " m -> " << after.rmse << " m (" << std::setprecision(0)
-            << std::abs(change)
-            << (std::abs(change) < 0.5 ? "%: unchanged" : change < 0.0 ? "% lower" : "% higher: the closures made it worse")
-            << ")\n";
-    }
+    if (before.rmse > 0 || after.rmse > 0)
+        out << "\n  APE translation RMSE: " << DescribeApeChange(before.rmse, after.rmse) << '\n';
 }
 
 }  // namespace revisit

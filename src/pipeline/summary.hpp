@@ -2,12 +2,24 @@
 /// The table `revisit run` prints at the end: counts, time per stage, and metrics when evaluated.
 #include <optional>
 #include <ostream>
+#include <string>
 
 #include "pipeline/evaluate.hpp"
 #include "pipeline/run_state.hpp"
 
 namespace revisit {
 
-void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation);
+/// Time spent after the chain, shown beside it (absent: that step did not run).
+struct PostRunSeconds {
+    std::optional<double> evaluation;  ///< [s]
+    std::optional<double> report;      ///< [s]
+};
+
+void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation,
+                     const PostRunSeconds& after_chain = {});
+
+/// "1.00 m -> 0.20 m (80% lower)". A change under 1 cm (the printed resolution) or 0.5% is "unchanged"; from
+/// under 1 cm a percentage means nothing, so the change is given in metres.
+std::string DescribeApeChange(double before_m, double after_m);
 
 }  // namespace revisit

@@ -25,13 +25,15 @@ cv::Mat RenderMapPair(const std::vector<Eigen::Vector3f>& query_points, const st
         for (std::size_t i = 0; i < ref_points.size(); i += std::max<std::size_t>(1, ref_points.size() / 50000))
             extent.Add(T_query_ref * ref_points[i].cast<double>());
 
-    mrpt::opengl::COpenGLScene scene;
-    scene.getViewport()->setCustomBackgroundColor({1.f, 1.f, 1.f});
-    const double grid_spacing = oblique ? AddGroundGrid(scene, extent, GroundHeight(query_points, extent)) : 0.0;
-    AddUniformCloud(scene, ref_points, T_query_ref, palette::kRefMap, config);
-    AddUniformCloud(scene, query_points, Eigen::Isometry3d::Identity(), palette::kQueryMap, config);
-    RenderedFrame frame = OffscreenRenderer::Instance().Render(scene, FrameExtent(extent, oblique, config),
-                                                               config.width, config.height);
+    double grid_spacing = 0.0;
+    const auto build = [&](mrpt::opengl::COpenGLScene& scene) {
+        scene.getViewport()->setCustomBackgroundColor({1.f, 1.f, 1.f});
+        grid_spacing = oblique ? AddGroundGrid(scene, extent, GroundHeight(query_points, extent)) : 0.0;
+        AddUniformCloud(scene, ref_points, T_query_ref, palette::kRefMap, config);
+        AddUniformCloud(scene, query_points, Eigen::Isometry3d::Identity(), palette::kQueryMap, config);
+    };
+    RenderedFrame frame = OffscreenRenderer::Instance().Render(build, FrameExtent(extent, oblique, config), config.width,
+                                                               config.height);
     std::vector<LegendEntry> legend{{"query map", palette::kQueryMap, false}, {"reference map", palette::kRefMap, false}};
     if (grid_spacing > 0.0) {
         char text[48];

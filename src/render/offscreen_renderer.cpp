@@ -9,17 +9,57 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <future>
 #include <map>
+#include <thread>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 namespace revisit {
 
+/// The context and every GL call live on one thread of their own: MRPT keeps per-thread render state, so a
+/// context shared by worker threads fails (CFBORender asserts) even when the calls are serialized.
 struct OffscreenRenderer::Impl {
     OSMesaContext context = nullptr;
     std::vector<unsigned char> dummy_buffer;  // OSMesa needs a default framebuffer; MRPT draws into its own FBO
     std::map<std::pair<int, int>, std::unique_ptr<mrpt::opengl::CFBORender>> fbos;
+
+    std::thread gl_thread;
+    std::mutex queue_mutex;
+    std::condition_variable queue_changed;
+    std::deque<std::function<void()>> jobs;
+    bool stopping = false;
+
+    void Loop() {
+        for (;;) {
+            std::function<void()> job;
+            {
+                std::unique_lock<std::mutex> lock(queue_mutex);
+                queue_changed.wait(lock, [&] { return stopping || !jobs.empty(); });
+                if (jobs.empty()) return;  // stopping, nothing left
+                job = std::move(jobs.front());
+                jobs.pop_front();
+            }
+            job();
+        }
+    }
+
+    /// Runs `work` on the GL thread and returns its result (or rethrows its exception) to the caller.
+    template <typename Result>
+    Result RunOnGlThread(std::function<Result()> work) {
+        auto task = std::make_shared<std::packaged_task<Result()>>(std::move(work));
+        std::future<Result> result = task->get_future();
+        {
+            std::lock_guard<std::mutex> lock(queue_mutex);
+            jobs.emplace_back([task] { (*task)(); });
+        }
+        queue_changed.notify_one();
+        return result.get();
+    }
 };
 
 bool RenderedFrame::Project(const Eigen::Vector3d& p_world, cv::Point2d& pixel) const {
@@ -38,25 +78,63 @@ OffscreenRenderer& OffscreenRenderer::Instance() {
 }
 
 OffscreenRenderer::OffscreenRenderer() : impl_(std::make_unique<Impl>()) {
-    // A 3.3 core profile: MRPT 2.5's shaders need it; llvmpipe gives 4.5 core (DATA.md).
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                              OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
-    impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
-    if (impl_->context == nullptr) throw std::runtime_error("render: cannot create an OSMesa OpenGL 3.3 core context");
-    impl_->dummy_buffer.assign(16 * 16 * 4, 0);
+    impl_->gl_thread = std::thread([impl = impl_.get()] { impl->Loop(); });
+    try {
+        impl_->RunOnGlThread<bool>([impl = impl_.get()] {
+            // A 3.3 core profile: MRPT 2.5's shaders need it; llvmpipe gives 4.5 core (DATA.md).
+            const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                                      OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+            impl->context = OSMesaCreateContextAttribs(attributes, nullptr);
+            if (impl->context == nullptr) throw std::runtime_error("render: cannot create an OSMesa OpenGL 3.3 core context");
+            impl->dummy_buffer.assign(16 * 16 * 4, 0);
+            return true;
+        });
+    } catch (...) {
+        Stop();
+        throw;
+    }
+}
+
+void OffscreenRenderer::Stop() {
+    {
+        std::lock_guard<std::mutex> lock(impl_->queue_mutex);
+        impl_->stopping = true;
+    }
+    impl_->queue_changed.notify_one();
+    if (impl_->gl_thread.joinable()) impl_->gl_thread.join();
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
-    if (impl_->context == nullptr) return;
-    OSMesaMakeCurrent(impl_->context, impl_->dummy_buffer.data(), GL_UNSIGNED_BYTE, 16, 16);
-    impl_->fbos.clear();  // framebuffers are freed while their context is current
-    OSMesaDestroyContext(impl_->context);
+    if (impl_->context != nullptr) {
+        impl_->RunOnGlThread<bool>([impl = impl_.get()] {
+            OSMesaMakeCurrent(impl->context, impl->dummy_buffer.data(), GL_UNSIGNED_BYTE, 16, 16);
+            impl->fbos.clear();  // framebuffers are freed while their context is current
+            OSMesaDestroyContext(impl->context);
+            return true;
+        });
+    }
+    Stop();
 }
 
 RenderedFrame OffscreenRenderer::Render(const mrpt::opengl::COpenGLScene& scene, const CameraView& view, int width,
                                         int height) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("render: image size must be positive");
-    std::lock_guard<std::mutex> lock(mutex_);
+    // Callers on any thread wait for their turn on the GL thread (the caller's scene lives until it returns).
+    return impl_->RunOnGlThread<RenderedFrame>([&] { return RenderHere(scene, view, width, height); });
+}
+
+RenderedFrame OffscreenRenderer::Render(const std::function<void(mrpt::opengl::COpenGLScene&)>& build_scene,
+                                        const CameraView& view, int width, int height) {
+    if (width <= 0 || height <= 0) throw std::invalid_argument("render: image size must be positive");
+    return impl_->RunOnGlThread<RenderedFrame>([&] {
+        mrpt::opengl::COpenGLScene scene;
+        build_scene(scene);
+        return RenderHere(scene, view, width, height);
+    });
+}
+
+RenderedFrame OffscreenRenderer::RenderHere(const mrpt::opengl::COpenGLScene& scene, const CameraView& view, int width,
+                                            int height) {
     if (!OSMesaMakeCurrent(impl_->context, impl_->dummy_buffer.data(), GL_UNSIGNED_BYTE, 16, 16))
         throw std::runtime_error("render: OSMesaMakeCurrent failed");
 

@@ -1,8 +1,10 @@
 #pragma once
 /// Off-screen OpenGL through OSMesa (no display, no GPU): draws MRPT scenes into cv::Mat.
-/// One context per process, created on first use and reused (DATA.md: libOSMesa must be linked before libGL).
+/// One context per process on its own thread, created on first use and reused (DATA.md: libOSMesa must be linked
+/// before libGL).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <functional>
 #include <memory>
 #include <mutex>
 
@@ -36,8 +38,14 @@ class OffscreenRenderer {
     /// The process-wide renderer (OpenGL contexts are expensive and MRPT caches shaders per context).
     static OffscreenRenderer& Instance();
 
-    /// Renders the scene's main viewport. Thread-safe: calls are serialized on the single context.
+    /// Renders the scene's main viewport. Thread-safe: every call runs on the renderer's own GL thread, one at a
+    /// time (MRPT's render state is per thread, so the context never changes threads).
+    /// The scene's GL buffers are created on the GL thread and freed where the caller destroys it: prefer the
+    /// overload below, which also builds and frees the scene there.
     RenderedFrame Render(const mrpt::opengl::COpenGLScene& scene, const CameraView& view, int width, int height);
+    /// Builds a scene with `build_scene`, renders and destroys it, all on the GL thread (any caller thread).
+    RenderedFrame Render(const std::function<void(mrpt::opengl::COpenGLScene&)>& build_scene, const CameraView& view,
+                         int width, int height);
 
     ~OffscreenRenderer();
     OffscreenRenderer(const OffscreenRenderer&) = delete;
@@ -45,9 +53,10 @@ class OffscreenRenderer {
 
   private:
     OffscreenRenderer();
+    RenderedFrame RenderHere(const mrpt::opengl::COpenGLScene& scene, const CameraView& view, int width, int height);
+    void Stop();  ///< ends the GL thread after its queued jobs
     struct Impl;
     std::unique_ptr<Impl> impl_;
-    std::mutex mutex_;
 };
 
 }  // namespace revisit

@@ -22,13 +22,14 @@ Extent ContentExtent(const OverviewData& data) {
 cv::Mat RenderOverview(const OverviewData& data, OverviewView view, const RenderConfig& config) {
     const bool oblique = view == OverviewView::kOblique;
     const Extent extent = ContentExtent(data);
-    mrpt::opengl::COpenGLScene scene;
-    scene.getViewport()->setCustomBackgroundColor({1.f, 1.f, 1.f});
-    const double grid_spacing = oblique ? AddGroundGrid(scene, extent, GroundHeight(data.map_points, extent)) : 0.0;
-    AddHeightColoredCloud(scene, data.map_points, config);
-
-    RenderedFrame frame = OffscreenRenderer::Instance().Render(scene, FrameExtent(extent, oblique, config),
-                                                               config.width, config.height);
+    double grid_spacing = 0.0;
+    const auto build = [&](mrpt::opengl::COpenGLScene& scene) {
+        scene.getViewport()->setCustomBackgroundColor({1.f, 1.f, 1.f});
+        grid_spacing = oblique ? AddGroundGrid(scene, extent, GroundHeight(data.map_points, extent)) : 0.0;
+        AddHeightColoredCloud(scene, data.map_points, config);
+    };
+    RenderedFrame frame = OffscreenRenderer::Instance().Render(build, FrameExtent(extent, oblique, config), config.width,
+                                                               config.height);
 
     std::vector<Polyline2d> rejected, accepted;
     for (const auto& closure : data.closures)

@@ -1,23 +1,12 @@
 #include "report/html_page.hpp"
 
+#include "report/report_templates.hpp"
 #include "report/svg_plot.hpp"
 
 #include <cmath>
 #include <cstdio>
 
 namespace revisit {
-namespace {
-
-constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:24px;color:#222;max-width:1400px}
-h1{font-size:24px}h2{font-size:19px;border-bottom:1px solid #ccc;padding-bottom:4px;margin-top:32px}
-table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:left;font-size:13px}
-th{background:#f2f2f2}pre{background:#f7f7f7;border:1px solid #ddd;padding:8px;overflow:auto;font-size:12px}
-figure{display:inline-block;margin:6px;vertical-align:top}figcaption{font-size:12px;color:#555}
-img{max-width:100%;border:1px solid #ddd}.thumbs figure{width:250px}.accepted{border:3px solid #00aa3c}
-.rejected{border:3px solid #e11e1e}nav a{margin-right:16px}
-)";
-
-}  // namespace
 
 HtmlPage::HtmlPage(const std::string& title) : title_(title) {}
 
@@ -80,12 +69,24 @@ HtmlPage& HtmlPage::Raw(const std::string& html) {
     return *this;
 }
 
+HtmlPage& HtmlPage::SortableTable(const std::vector<std::string>& header, const std::vector<std::string>& rows_html,
+                                  const std::string& id) {
+    body_ << "<div class=\"listing\"><table class=\"sortable\"" << (id.empty() ? "" : " id=\"" + EscapeXml(id) + "\"")
+          << ">\n<thead><tr>";
+    for (const auto& h : header) body_ << "<th>" << EscapeXml(h) << "</th>";
+    body_ << "</tr></thead>\n<tbody>\n";
+    for (const auto& row : rows_html) body_ << row;
+    body_ << "</tbody></table></div>\n";
+    has_sortable_table_ = true;
+    return *this;
+}
+
 std::string HtmlPage::Finish() const {
-    std::ostringstream page;
-    page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<link rel=\"icon\" href=\"data:,\">\n<title>" << EscapeXml(title_)
-         << "</title>\n<style>\n" << kStyle << "</style>\n</head>\n<body>\n<h1>" << EscapeXml(title_) << "</h1>\n"
-         << body_.str() << "</body>\n</html>\n";
-    return page.str();
+    // The look comes from share/report/ (read once); the table script only where a table can use it.
+    const ReportTemplates& templates = DefaultReportTemplates();
+    std::string body = body_.str();
+    if (has_sortable_table_) body += "<script>\n" + templates.table_script + "</script>\n";
+    return FillTemplate(templates.page, {{"title", EscapeXml(title_)}, {"style", templates.style}, {"body", body}});
 }
 
 std::string HtmlLink(const std::string& href, const std::string& text) {

@@ -1,5 +1,6 @@
 #pragma once
-/// Building blocks of the report's HTML: one inline style sheet, no scripts, no external resources.
+/// Building blocks of the report's HTML. The page skeleton and style sheet come from share/report/
+/// (report_templates.hpp) and are inlined; no external resources; a script only beside a sortable table.
 #include <sstream>
 #include <string>
 #include <utility>
@@ -19,6 +20,10 @@ class HtmlPage {
     HtmlPage& Table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
     /// An image (relative path) with a caption; `link` (optional) makes it clickable.
     HtmlPage& Figure(const std::string& src, const std::string& caption, const std::string& link = "", int width = 0);
+    /// A table the inline table.js can sort and filter; plain and complete without it. `rows_html` are whole
+    /// `<tr>...</tr>` rows, already escaped.
+    HtmlPage& SortableTable(const std::vector<std::string>& header, const std::vector<std::string>& rows_html,
+                            const std::string& id = "");
     /// Raw HTML written by the caller (already escaped).
     HtmlPage& Raw(const std::string& html);
 
@@ -27,6 +32,7 @@ class HtmlPage {
   private:
     std::string title_;
     std::ostringstream body_;
+    bool has_sortable_table_ = false;
 };
 
 /// A link; `href` and `text` are escaped.

@@ -10,8 +10,9 @@
 namespace revisit {
 namespace {
 
-/// The candidates `map_id` takes part in, as an HTML list linking to their pages and to the other map's page.
-std::string ClosureList(const ReportInput& input, int map_id, const ReportConfig& config) {
+/// The candidates `map_id` takes part in, as an HTML list linking to their pages (or naming the command that
+/// renders them) and to the other map's page.
+std::string ClosureList(const ReportInput& input, int map_id, const ReportPlan& plan) {
     std::string html;
     for (std::size_t i = 0; i < input.closures.size(); ++i) {
         const auto& entry = input.closures[i];
@@ -19,11 +20,8 @@ std::string ClosureList(const ReportInput& input, int map_id, const ReportConfig
         if (c.query_id != map_id && c.ref_id != map_id) continue;
         const bool as_query = c.query_id == map_id;
         const int other = as_query ? c.ref_id : c.query_id;
-        const std::string closure = "closure #" + std::to_string(i);
-        const std::string other_map = "map " + std::to_string(other);
-        html += "<li>" + (config.closure_pages ? HtmlLink(ClosureStem(i) + ".html", closure) : EscapeXml(closure)) + ": " +
-                EscapeXml(as_query ? "query, reference " : "reference of ") +
-                (config.map_pages ? HtmlLink(MapStem(other) + ".html", other_map) : EscapeXml(other_map)) +
+        html += "<li>" + ClosureRef(input, plan, i) + ": " + EscapeXml(as_query ? "query, reference " : "reference of ") +
+                MapRef(plan, other) +
                 EscapeXml(", " + std::to_string(c.num_inliers) + " inliers, " + (entry.accepted ? "accepted" : "rejected")) +
                 "</li>\n";
     }
@@ -33,7 +31,7 @@ std::string ClosureList(const ReportInput& input, int map_id, const ReportConfig
 }  // namespace
 
 WrittenPage WriteMapPage(const ReportInput& input, int map_id, const std::filesystem::path& report_dir,
-                         const ReportConfig& config, const std::string& nav_html) {
+                         const ReportConfig& config, const ReportPlan& plan, const std::string& nav_html) {
     const std::string stem = MapStem(map_id);
     const auto map = LoadMap(input, map_id);
     const auto density = LoadDensity(input, map, map_id, config);
@@ -69,7 +67,7 @@ WrittenPage WriteMapPage(const ReportInput& input, int map_id, const std::filesy
         page.Paragraph("No map data available in this run: the density image cannot be drawn.");
     }
     page.Heading("Closure candidates", 2);
-    page.Raw(ClosureList(input, map_id, config));
+    page.Raw(ClosureList(input, map_id, plan));
     result.page = report_dir / (stem + ".html");
     WriteText(result.page, page.Finish());
     return result;

@@ -28,7 +28,9 @@ struct StageTiming {
 /// One detected closure and what became of it.
 struct ClosureEntry {
     Closure closure;
-    bool accepted = false;
+    bool accepted = false;                   ///< in the final pose graph
+    bool reached_threshold = false;          ///< reached the acceptance threshold (detector.min_inliers): verified in 3D
+    bool verified = false;                   ///< passed 3D verification (may still be rejected by the pose graph)
     std::string reason;                      ///< why accepted or rejected (refinement / pose-graph gate)
     std::optional<double> fitness;           ///< refinement fitness (e.g. inlier ratio of the ICP) [0..1]
     std::optional<double> rmse;              ///< refinement residual [m]
@@ -76,7 +78,14 @@ struct ReportInput {
     TimedTrajectory reference;  ///< ground truth, empty when unknown
 
     std::vector<ClosureEntry> closures;
-    std::vector<int> map_ids;  ///< the run's local maps (one page each)
+    std::vector<int> map_ids;  ///< the run's local maps
+    std::vector<ScanRange> map_scans;  ///< scan range of each map in map_ids (same order), or empty when unknown
+    /// Closures the evaluation counts as true / false against the reference (metrics.json), when evaluated.
+    std::optional<int> true_closures;
+    std::optional<int> false_closures;
+    /// How a user renders a page on demand; the index lists "<inspect_command> --closure N" for candidates
+    /// without a page and "--map N" for maps without one.
+    std::string inspect_command = "revisit inspect RUN_DIR";
     std::vector<PrCurve> pr_curves;
     ErrorSeries ape_before;  ///< odometry against reference
     ErrorSeries ape_after;   ///< corrected against reference

@@ -3,12 +3,18 @@
 #include "render/map_pair_view.hpp"
 #include "render/overview.hpp"
 #include "report/html_page.hpp"
+#include "report/index_tables.hpp"
 #include "report/map_page.hpp"
 #include "report/pair_page.hpp"
 #include "report/plots.hpp"
 #include "report/svg_plot.hpp"
 
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <mutex>
 #include <stdexcept>
 #include <tuple>
 
@@ -49,26 +55,38 @@ OverviewData MakeOverviewData(const ReportInput& input) {
     return data;
 }
 
-std::string Navigation(std::size_t index, std::size_t count, bool link_index) {
+/// Links to the index and to the previous and next closure that have a page.
+std::string Navigation(const ReportPlan& plan, std::size_t index, bool link_index) {
     std::string nav = "<nav>";
     if (link_index) nav += HtmlLink("index.html", "report index");
-    if (index > 0) nav += HtmlLink(ClosureStem(index - 1) + ".html", "previous closure");
-    if (index + 1 < count) nav += HtmlLink(ClosureStem(index + 1) + ".html", "next closure");
+    const auto& pages = plan.closure_pages;
+    const auto it = std::lower_bound(pages.begin(), pages.end(), index);
+    if (it != pages.begin()) nav += HtmlLink(ClosureStem(*(it - 1)) + ".html", "previous closure page");
+    const auto next = it != pages.end() && *it == index ? it + 1 : it;
+    if (next != pages.end()) nav += HtmlLink(ClosureStem(*next) + ".html", "next closure page");
     return nav + "</nav>\n";
 }
 
-std::filesystem::path ClosurePage(const ReportInput& input, std::size_t index, const std::filesystem::path& dir,
-                                  const ReportConfig& config, bool link_index, std::string* thumbnail, int* images) {
+void CheckClosureIndex(const ReportInput& input, std::size_t index) {
     if (index >= input.closures.size())
         throw std::out_of_range("report: closure " + std::to_string(index) + " does not exist (" +
                                 std::to_string(input.closures.size()) + " closures)");
-    std::filesystem::create_directories(dir);
-    const auto page = WritePairPage(input, input.closures[index], true, ClosureStem(index), dir, config,
-                                    Navigation(index, link_index ? input.closures.size() : 0, link_index));
-    if (thumbnail) *thumbnail = page.thumbnail;
-    if (images) *images += page.images;
-    return page.page;
 }
+
+/// The plan of the report in `report_dir`, for a page rendered alone: links only where the index put pages.
+ReportPlan PlanForSinglePage(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config,
+                             bool* has_index) {
+    *has_index = std::filesystem::exists(report_dir / "index.html");
+    return *has_index ? PlanReport(input, config.strongest_candidates, config.closure_pages, config.map_pages)
+                      : PlanReport(input, 0, false, false);
+}
+
+/// One page to render: a closure's (index into input.closures) or a map's (id).
+struct PageTask {
+    bool is_closure = true;
+    std::size_t closure = 0;
+    int map_id = 0;
+};
 
 }  // namespace
 
@@ -76,9 +94,25 @@ ReportConfig::ReportConfig() : pair(MapPairRenderConfig()) {}
 
 std::filesystem::path WriteClosurePage(const ReportInput& input, std::size_t closure_index,
                                        const std::filesystem::path& report_dir, const ReportConfig& config) {
-    // A page rendered alone (revisit inspect) links to the index only when there is one.
-    const bool has_index = std::filesystem::exists(report_dir / "index.html");
-    return ClosurePage(input, closure_index, report_dir, config, has_index, nullptr, nullptr);
+    CheckClosureIndex(input, closure_index);
+    bool has_index = false;
+    const ReportPlan plan = PlanForSinglePage(input, report_dir, config, &has_index);
+    std::filesystem::create_directories(report_dir);
+    return WritePairPage(input, input.closures[closure_index], true, ClosureStem(closure_index), report_dir, config,
+                         Navigation(plan, closure_index, has_index))
+        .page;
+}
+
+std::filesystem::path WriteSingleMapPage(const ReportInput& input, int map_id, const std::filesystem::path& report_dir,
+                                         const ReportConfig& config) {
+    if (std::find(input.map_ids.begin(), input.map_ids.end(), map_id) == input.map_ids.end())
+        throw std::out_of_range("report: local map " + std::to_string(map_id) + " does not exist (" +
+                                std::to_string(input.map_ids.size()) + " maps)");
+    bool has_index = false;
+    const ReportPlan plan = PlanForSinglePage(input, report_dir, config, &has_index);
+    std::filesystem::create_directories(report_dir);
+    const std::string nav = has_index ? "<nav>" + HtmlLink("index.html", "report index") + "</nav>\n" : std::string();
+    return WriteMapPage(input, map_id, report_dir, config, plan, nav).page;
 }
 
 std::filesystem::path WriteMapPairPage(const ReportInput& input, int query_map_id, int ref_map_id,
@@ -103,28 +137,47 @@ std::filesystem::path WriteMapPairPage(const ReportInput& input, int query_map_i
     return WritePairPage(input, entry, false, stem, report_dir, config, nav).page;
 }
 
-ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config) {
+ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config,
+                        const ReportProgress& progress) {
     std::filesystem::create_directories(report_dir);
+    const ReportPlan plan = PlanReport(input, config.strongest_candidates, config.closure_pages, config.map_pages);
+
+    // Pages first, in parallel: each writes only its own files; thumbnails and counts land in their slots.
+    std::vector<PageTask> tasks;
+    for (const std::size_t i : plan.closure_pages) tasks.push_back({true, i, 0});
+    for (const int id : plan.map_pages) tasks.push_back({false, 0, id});
+    std::vector<WrittenPage> written(tasks.size());
+    const std::size_t total_pages = tasks.size() + 1;
+    std::mutex progress_mutex;
+    std::size_t pages_done = 0;
+    if (progress) progress(0, total_pages);
+    const std::string index_nav = "<nav>" + HtmlLink("index.html", "report index") + "</nav>\n";
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks.size(), 1), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            const PageTask& task = tasks[t];
+            written[t] = task.is_closure ? WritePairPage(input, input.closures[task.closure], true, ClosureStem(task.closure),
+                                                         report_dir, config, Navigation(plan, task.closure, true))
+                                         : WriteMapPage(input, task.map_id, report_dir, config, plan, index_nav);
+            std::lock_guard<std::mutex> lock(progress_mutex);
+            ++pages_done;
+            if (progress) progress(pages_done, total_pages);
+        }
+    });
     ReportStats stats;
+    for (const auto& page : written) stats.images += page.images, ++stats.pages;
+
     HtmlPage index(input.title);
     index.Raw("<nav>" + HtmlLink("#summary", "summary") + HtmlLink("#overview", "overview") +
-              HtmlLink("#metrics", "metrics") + HtmlLink("#closures", "closures") + HtmlLink("#maps", "local maps") +
-              HtmlLink("#config", "configuration") +
-              "</nav>\n");
+              HtmlLink("#metrics", "metrics") + HtmlLink("#closures", "closures") +
+              HtmlLink("#candidates", "all candidates") + HtmlLink("#maps", "local maps") +
+              HtmlLink("#timing", "timing") + HtmlLink("#config", "configuration") + "</nav>\n");
 
     index.Heading("Summary", 2, "summary");
     if (!input.dataset_summary.empty()) index.List(input.dataset_summary);
+    index.Raw("<div class=\"glance\">\n");
+    index.KeyValueTable(GlanceCounts(input, plan));
+    index.Raw("</div>\n");
     if (!input.counts.empty()) index.KeyValueTable(input.counts);
-    if (!input.timings.empty()) {
-        std::vector<std::pair<std::string, std::string>> rows;
-        double total = 0.0;
-        for (const auto& t : input.timings) rows.emplace_back(t.stage, FormatNumber(t.seconds, 2) + " s"), total += t.seconds;
-        rows.emplace_back("total", FormatNumber(total, 2) + " s");
-        index.KeyValueTable(rows);
-        WriteText(report_dir / "timing.svg", TimingSvg(input.timings));
-        ++stats.images;
-        index.Figure("timing.svg", "time per stage");
-    }
 
     index.Heading("Overview", 2, "overview");
     const OverviewData overview = MakeOverviewData(input);
@@ -134,6 +187,9 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
         ++stats.images;
         index.Figure(name, std::string("overview, ") + caption, name, 640);
     }
+
+    index.Heading("Accepted closures by ground-truth error", 2, "errors");
+    AddErrorRanking(index, input, plan, 5);
 
     index.Heading("Metrics", 2, "metrics");
     if (!input.metrics.rows.empty()) index.Table(input.metrics.header, input.metrics.rows);
@@ -155,45 +211,56 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     if (input.metrics.rows.empty() && input.pr_curves.empty() && input.ape_after.values.empty())
         index.Paragraph("No evaluation in this run (no ground truth).");
 
-    index.Heading("Closures", 2, "closures");
-    std::size_t accepted = 0;
-    for (const auto& entry : input.closures) accepted += entry.accepted;
-    index.Paragraph(std::to_string(input.closures.size()) + " detected, " + std::to_string(accepted) + " accepted.");
+    index.Heading("Closure pages", 2, "closures");
+    index.Paragraph(std::to_string(plan.closure_pages.size()) + " of " + std::to_string(input.closures.size()) +
+                    " candidates have a page: every one that reached the acceptance threshold and the " +
+                    std::to_string(config.strongest_candidates) +
+                    " strongest below it. Any other: `" + input.inspect_command + " --closure N`.");
     std::string thumbs = "<div class=\"thumbs\">\n";
-    for (std::size_t i = 0; i < input.closures.size(); ++i) {
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+        if (!tasks[t].is_closure) continue;
+        const std::size_t i = tasks[t].closure;
         const auto& entry = input.closures[i];
         const std::string label = "#" + std::to_string(i) + ": map " + std::to_string(entry.closure.query_id) + " to " +
                                   std::to_string(entry.closure.ref_id) + ", " + std::to_string(entry.closure.num_inliers) +
-                                  " inliers, " + (entry.accepted ? "accepted" : "rejected");
-        if (!config.closure_pages) {
-            thumbs += "<p>" + EscapeXml(label) + "</p>\n";
-            continue;
-        }
-        std::string thumbnail;
-        ClosurePage(input, i, report_dir, config, true, &thumbnail, &stats.images);
-        ++stats.pages;
-        thumbs += ThumbnailFigure(ClosureStem(i) + ".html", thumbnail, label, entry.accepted ? "accepted" : "rejected");
+                                  " inliers, " + ClosureStatus(entry);
+        thumbs += ThumbnailFigure(ClosureStem(i) + ".html", written[t].thumbnail, label, entry.accepted ? "accepted" : "rejected");
     }
     index.Raw(thumbs + "</div>\n");
 
+    index.Heading("All closure candidates", 2, "candidates");
+    index.Paragraph("One row per candidate; click a header to sort, type to filter (with scripts on).");
+    AddCandidateTable(index, input, plan);
+
     index.Heading("Local maps", 2, "maps");
-    index.Paragraph(std::to_string(input.map_ids.size()) + " local maps.");
-    if (config.map_pages && !input.map_ids.empty()) {
-        std::string maps = "<div class=\"thumbs\">\n";
-        const std::string nav = "<nav>" + HtmlLink("index.html", "report index") + "</nav>\n";
-        for (const int id : input.map_ids) {
-            const auto page = WriteMapPage(input, id, report_dir, config, nav);
-            stats.images += page.images;
-            ++stats.pages;
-            maps += ThumbnailFigure(page.page.filename().string(), page.thumbnail, "map " + std::to_string(id));
-        }
-        index.Raw(maps + "</div>\n");
+    index.Paragraph(std::to_string(input.map_ids.size()) + " local maps; " + std::to_string(plan.map_pages.size()) +
+                    " pages (the maps of the closure pages). Any other: `" + input.inspect_command + " --map N`.");
+    std::string maps = "<div class=\"thumbs\">\n";
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+        if (tasks[t].is_closure) continue;
+        maps += ThumbnailFigure(written[t].page.filename().string(), written[t].thumbnail, "map " + std::to_string(tasks[t].map_id));
+    }
+    index.Raw(maps + "</div>\n");
+    AddMapTable(index, input, plan);
+
+    index.Heading("Time per stage", 2, "timing");
+    if (input.timings.empty()) index.Paragraph("Not recorded.");
+    if (!input.timings.empty()) {
+        std::vector<std::pair<std::string, std::string>> rows;
+        double total = 0.0;
+        for (const auto& t : input.timings) rows.emplace_back(t.stage, FormatNumber(t.seconds, 2) + " s"), total += t.seconds;
+        rows.emplace_back("total", FormatNumber(total, 2) + " s");
+        index.KeyValueTable(rows);
+        WriteText(report_dir / "timing.svg", TimingSvg(input.timings));
+        ++stats.images;
+        index.Figure("timing.svg", "time per stage");
     }
 
     index.Heading("Configuration", 2, "config");
     index.Preformatted(input.config_text.empty() ? "(not recorded)" : input.config_text);
     WriteText(report_dir / "index.html", index.Finish());
     ++stats.pages;
+    if (progress) progress(total_pages, total_pages);
     return stats;
 }
 

@@ -7,6 +7,7 @@
 #include "report/report_input.hpp"
 
 #include <filesystem>
+#include <functional>
 
 namespace revisit {
 
@@ -15,9 +16,12 @@ struct ReportConfig {
     RenderConfig pair;                     ///< per-closure 3D views; MapPairRenderConfig() by default
     DensityPictureConfig density_pictures;
     DensityImageConfig density;            ///< when density images are computed from maps (no load_density_image)
-    int thumbnail_width = 240;             ///< [px]
-    bool closure_pages = true;             ///< one page per closure (index thumbnails link to them)
-    bool map_pages = true;                 ///< one page per local map in ReportInput::map_ids
+    int thumbnail_width = 240;             ///< [px] the one thumbnail size (closures and maps)
+    bool closure_pages = true;             ///< pages for closures (index thumbnails link to them); false: table only
+    /// Besides every closure that reached the acceptance threshold, pages for this many of the strongest
+    /// candidates below it (most inliers); the others are table rows, rendered on demand by `revisit inspect`.
+    int strongest_candidates = 20;
+    bool map_pages = true;                 ///< pages for the local maps of the rendered closures; the rest: table rows
     ReportConfig();
 };
 
@@ -26,13 +30,22 @@ struct ReportStats {
     int images = 0;  ///< PNG and SVG files written
 };
 
-/// Writes report_dir/index.html with its images, plots, one page per closure and one per local map. Creates
-/// the folder.
-ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config = {});
+/// Called with (0, total) before the first page and after each page is written, with the pages done and the
+/// total (the index counts as the last page); calls are serialized, from any thread.
+using ReportProgress = std::function<void(std::size_t pages_done, std::size_t pages_total)>;
+
+/// Writes report_dir/index.html with its images and plots, and the pages PlanReport chooses (report_plan.hpp).
+/// Creates the folder. Pages render in parallel (TBB); the files are the same at any thread count.
+ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config = {},
+                        const ReportProgress& progress = {});
 
 /// Writes the page of input.closures[closure_index] (report_dir/closure_NNNN.html) and its pictures; returns its path.
 std::filesystem::path WriteClosurePage(const ReportInput& input, std::size_t closure_index,
                                        const std::filesystem::path& report_dir, const ReportConfig& config = {});
+
+/// Writes the page of one local map (report_dir/map_NNNN.html) and its pictures; returns its path (`revisit inspect --map`).
+std::filesystem::path WriteSingleMapPage(const ReportInput& input, int map_id, const std::filesystem::path& report_dir,
+                                         const ReportConfig& config = {});
 
 /// The same comparison for any two local maps, detected or not (`revisit inspect --maps A B`): density images,
 /// overlay and 3D view at the odometry relative pose, so a user can see why a closure was missed.

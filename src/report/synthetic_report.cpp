@@ -124,6 +124,8 @@ ReportInput MakeSyntheticRun(const SyntheticRunConfig& config) {
         c.num_inliers = 56;
         c.num_votes = 90;
         entry.accepted = unit(rng) >= config.reject_fraction;
+        entry.reached_threshold = true;
+        entry.verified = entry.accepted;
         entry.reason = entry.accepted ? "ICP fitness above threshold" : "ICP fitness below threshold";
         entry.fitness = entry.accepted ? 0.85 : 0.25;
         entry.rmse = entry.accepted ? 0.08 : 0.6;
@@ -133,11 +135,43 @@ ReportInput MakeSyntheticRun(const SyntheticRunConfig& config) {
         input.closures.push_back(std::move(entry));
     }
 
+    // Weak candidates after the real ones (their own generator: the real ones stay as they were).
+    std::mt19937 weak_rng(config.seed + 1000u);
+    const int num_maps = laps * config.maps_per_lap;
+    std::uniform_int_distribution<int> any_map(0, num_maps - 1), inliers(3, 9), votes(3, 40);
+    for (int k = 0; k < config.weak_candidates; ++k) {
+        ClosureEntry entry;
+        Closure& c = entry.closure;
+        c.query_id = any_map(weak_rng);
+        c.ref_id = any_map(weak_rng);
+        if (c.query_id < c.ref_id) std::swap(c.query_id, c.ref_id);
+        c.query_scans = {std::size_t(c.query_id) * config.scans_per_map, std::size_t(c.query_id + 1) * config.scans_per_map - 1};
+        c.ref_scans = {std::size_t(c.ref_id) * config.scans_per_map, std::size_t(c.ref_id + 1) * config.scans_per_map - 1};
+        c.num_inliers = inliers(weak_rng);
+        c.num_votes = votes(weak_rng);
+        for (int m = 0; m < 3 * c.num_inliers; ++m) {
+            c.query_keypoints.emplace_back(float(160.0 * unit(weak_rng)), float(160.0 * unit(weak_rng)));
+            c.ref_keypoints.emplace_back(float(160.0 * unit(weak_rng)), float(160.0 * unit(weak_rng)));
+            c.matches.push_back({m, m, 30 + m % 20});
+            c.inlier_mask.push_back(m < c.num_inliers);
+        }
+        c.T_query_ref = Eigen::Isometry3d(Eigen::AngleAxisd(3.0 * unit(weak_rng), Eigen::Vector3d::UnitZ())).matrix();
+        entry.reason = "below the acceptance threshold (" + std::to_string(c.num_inliers) + " < 10 inliers)";
+        entry.gt_translation_error = 5.0 + 40.0 * unit(weak_rng);
+        entry.gt_rotation_error = 180.0 * unit(weak_rng);
+        input.closures.push_back(std::move(entry));
+    }
+    int true_closures = 0, false_closures = 0;
+    for (const auto& entry : input.closures)
+        if (entry.accepted) (entry.gt_true_positive.value_or(false) ? true_closures : false_closures) += 1;
+    input.true_closures = true_closures;
+    input.false_closures = false_closures;
+
     input.dataset_summary = {"synthetic loop, radius " + std::to_string(int(config.loop_radius)) + " m",
                              std::to_string(num_scans) + " scans, " + std::to_string(laps) + " laps"};
     input.config_text = "maps_per_lap: " + std::to_string(config.maps_per_lap) + "\nseed: " + std::to_string(config.seed) + "\n";
     input.counts = {{"scans", std::to_string(num_scans)}, {"local maps", std::to_string(laps * config.maps_per_lap)},
-                    {"closures", std::to_string(config.num_closures)}};
+                    {"closures", std::to_string(config.num_closures + config.weak_candidates)}};
     input.timings = {{"odometry", 12.5}, {"local maps", 3.1}, {"closures", 4.2}, {"refinement", 6.0}, {"pose graph", 0.8}};
     input.metrics = {{"method", "precision", "recall", "F1"}, {{"density-ORB", "0.95", "0.80", "0.869"}}};
     PrCurve curve{"density-ORB", {}, std::nullopt};
@@ -158,7 +192,10 @@ ReportInput MakeSyntheticRun(const SyntheticRunConfig& config) {
         map.points.push_back(Eigen::Vector3f(world->config.map_radius, world->config.map_radius, 0.f));
         return ComputeDensityImage(map.points);
     };
-    for (int id = 0; id < laps * config.maps_per_lap; ++id) input.map_ids.push_back(id);
+    for (int id = 0; id < num_maps; ++id) {
+        input.map_ids.push_back(id);
+        input.map_scans.push_back({std::size_t(id) * config.scans_per_map, std::size_t(id + 1) * config.scans_per_map - 1});
+    }
     input.load_keypoints = [density = input.load_density_image](int id) {
         const auto image = density(id);
         return image ? ComputeFeatures(image->image).keypoints : std::vector<Eigen::Vector2f>{};

@@ -15,6 +15,9 @@ struct SyntheticRunConfig {
     double map_radius = 40.0;       ///< [m] world points within this distance of a map's origin
     double yaw_drift = 0.1;         ///< [rad per lap] odometry heading drift
     double reject_fraction = 0.2;   ///< closures marked rejected
+    /// Extra candidates below the acceptance threshold (3-9 inliers between random maps, wrong poses), as a long
+    /// real sequence produces by the thousand.
+    int weak_candidates = 0;
     std::uint32_t seed = 1;
 };
 

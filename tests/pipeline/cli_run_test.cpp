@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 
@@ -106,7 +107,9 @@ TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
     const auto report = test::RunCli("report " + test::Quote(out));
     EXPECT_EQ(report.exit_code, 0) << report.output;
     EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "index.html"));
-    // One page per local map, with the keypoints read back from the run's closure database.
+    // A local map's page on demand, with the keypoints read back from the run's closure database.
+    const auto map = test::RunCli("inspect " + test::Quote(out) + " --map 0");
+    EXPECT_EQ(map.exit_code, 0) << map.output;
     std::ifstream map_page(fs::path(out) / "report" / "map_0000.html");
     const std::string map_html((std::istreambuf_iterator<char>(map_page)), std::istreambuf_iterator<char>());
     const auto keypoints_at = map_html.find("ORB keypoints</th><td>");
@@ -119,6 +122,13 @@ TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
     EXPECT_EQ(missing.exit_code, 1);
     EXPECT_NE(missing.output.find("no closure 9999"), std::string::npos) << missing.output;
     EXPECT_EQ(test::RunCli("report " + test::Quote((dir / "nothing").string())).exit_code, 1);
+    // Templates that cannot be found: an error naming where they were looked for.
+    const std::string nowhere = (dir / "no-share").string();
+    ASSERT_EQ(setenv("REVISIT_SHARE_DIR", nowhere.c_str(), 1), 0);  // inherited by the command
+    const auto no_templates = test::RunCli("report " + test::Quote(out) + " --quiet");
+    unsetenv("REVISIT_SHARE_DIR");
+    EXPECT_EQ(no_templates.exit_code, 1) << no_templates.output;
+    EXPECT_NE(no_templates.output.find(nowhere), std::string::npos) << no_templates.output;
 }
 }  // namespace
 }  // namespace revisit

@@ -8,7 +8,7 @@
 namespace revisit {
 namespace {
 
-std::string Summary(double ape_before, double ape_after) {
+std::string Summary(double ape_before, double ape_after, const PostRunSeconds& after_chain = {}) {
     RunState state;
     ClosureRecord below_gamma, failed_refinement, graph_rejected, accepted;
     failed_refinement.refined = graph_rejected.refined = accepted.refined = true;
@@ -19,7 +19,8 @@ std::string Summary(double ape_before, double ape_after) {
     evaluation.odometry.ape.errors.translation_stats.rmse = ape_before;
     evaluation.corrected.ape.errors.translation_stats.rmse = ape_after;
     std::ostringstream out;
-    PrintRunSummary(out, state, evaluation);
+    state.wall_seconds = 8.0;
+    PrintRunSummary(out, state, evaluation, after_chain);
     return out.str();
 }
 
@@ -27,9 +28,28 @@ TEST(RunSummary, CountsClosuresByStageAndNamesTheApeChange) {
     EXPECT_NE(Summary(1.0, 0.2).find("4 detected (>= 3 inliers), 3 refined in 3D, 2 verified, 1 accepted by the pose graph"),
               std::string::npos)
         << Summary(1.0, 0.2);
-    EXPECT_NE(Summary(1.0, 0.2).find("1.0 m -> 0.2 m (80% lower)"), std::string::npos) << Summary(1.0, 0.2);
+    EXPECT_NE(Summary(1.0, 0.2).find("1.00 m -> 0.20 m (80% lower)"), std::string::npos) << Summary(1.0, 0.2);
     EXPECT_NE(Summary(1.0, 1.5).find("(50% higher: the closures made it worse)"), std::string::npos) << Summary(1.0, 1.5);
-    EXPECT_NE(Summary(1.0, 1.001).find("(0%: unchanged)"), std::string::npos) << Summary(1.0, 1.001);
+    EXPECT_NE(Summary(1.0, 1.001).find("1.00 m -> 1.00 m (unchanged)"), std::string::npos) << Summary(1.0, 1.001);
+}
+
+TEST(RunSummary, ApeChangesBetweenValuesNearZeroAreUnchangedNotThousandsOfPercent) {
+    // --poses dataset: the odometry is the reference, both errors are numerical noise.
+    EXPECT_NE(Summary(1e-5, 1.4e-3).find("0.00 m -> 0.00 m (unchanged)"), std::string::npos) << Summary(1e-5, 1.4e-3);
+    EXPECT_EQ(DescribeApeChange(1e-5, 1.4e-3).find('%'), std::string::npos);
+    // Within the 1 cm the summary prints, also for larger values.
+    EXPECT_NE(DescribeApeChange(2.0, 2.008).find("(unchanged)"), std::string::npos);
+    // From near zero to a real error: metres, not a percentage.
+    EXPECT_EQ(DescribeApeChange(0.001, 0.5), "0.00 m -> 0.50 m (+0.50 m: the closures made it worse)");
+    EXPECT_EQ(DescribeApeChange(0.004, 0.0), "0.00 m -> 0.00 m (unchanged)");
+    EXPECT_EQ(DescribeApeChange(0.5, 0.05), "0.50 m -> 0.05 m (90% lower)");
+}
+
+TEST(RunSummary, WallTimeIncludesEvaluationAndReportEachShown) {
+    const std::string summary = Summary(1.0, 0.2, {2.5, 4.0});
+    EXPECT_NE(summary.find("wall time         14.5 s: chain 8.0 s"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("evaluation 2.5 s, report 4.0 s"), std::string::npos) << summary;
+    EXPECT_EQ(Summary(1.0, 0.2).find("report"), std::string::npos);  // not run: not shown
 }
 
 }  // namespace

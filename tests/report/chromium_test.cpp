@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "report/pair_page.hpp"
 #include "report/report_writer.hpp"
 #include "report/synthetic_report.hpp"
 #include "test_data.hpp"
@@ -45,7 +46,8 @@ std::string RunChromium(const std::string& chromium, const std::filesystem::path
 }
 
 /// A probe page beside `page` that loads it in an iframe and reports its images once everything has loaded.
-/// (The report itself has no scripts; the probe needs --allow-file-access-from-files to look into the frame.)
+/// It also counts the filter boxes the index's table script adds (0 on pages without sortable tables).
+/// (The probe needs --allow-file-access-from-files to look into the frame.)
 std::filesystem::path WriteProbe(const std::filesystem::path& page) {
     const auto probe = page.parent_path() / ("probe_" + page.filename().string());
     std::ofstream(probe) << "<!DOCTYPE html><html><body><div id=\"result\">pending</div>\n"
@@ -55,7 +57,9 @@ std::filesystem::path WriteProbe(const std::filesystem::path& page) {
                             "  if (!d) { document.getElementById('result').textContent = 'no-access'; return; }\n"
                             "  const images = Array.from(d.images);\n"
                             "  const broken = images.filter(i => !(i.complete && i.naturalWidth > 0)).map(i => i.getAttribute('src'));\n"
-                            "  document.getElementById('result').textContent = 'images=' + images.length + ' broken=' + broken.length + ' [' + broken.join(',') + ']';\n"
+                            "  const filters = d.querySelectorAll('input.filter').length;\n"
+                            "  const rows = d.querySelectorAll('table.sortable tbody tr').length;\n"
+                            "  document.getElementById('result').textContent = 'images=' + images.length + ' broken=' + broken.length + ' filters=' + filters + ' rows=' + rows + ' [' + broken.join(',') + ']';\n"
                             "};\n</script></body></html>\n";
     return probe;
 }
@@ -63,6 +67,8 @@ std::filesystem::path WriteProbe(const std::filesystem::path& page) {
 struct ImageCheck {
     int images = -1;
     int broken = -1;
+    int filters = -1;  ///< filter boxes added by the table script
+    int rows = -1;     ///< rows of sortable tables
     std::string detail;
 };
 
@@ -71,10 +77,12 @@ ImageCheck CheckImages(const std::string& chromium, const std::filesystem::path&
                                         WriteProbe(page));
     std::smatch match;
     ImageCheck check;
-    if (std::regex_search(dom, match, std::regex(R"(images=(\d+) broken=(\d+) \[([^\]]*)\])"))) {
+    if (std::regex_search(dom, match, std::regex(R"(images=(\d+) broken=(\d+) filters=(\d+) rows=(\d+) \[([^\]]*)\])"))) {
         check.images = std::stoi(match[1]);
         check.broken = std::stoi(match[2]);
-        check.detail = match[3];
+        check.filters = std::stoi(match[3]);
+        check.rows = std::stoi(match[4]);
+        check.detail = match[5];
     } else {
         check.detail = dom.substr(0, 400);
     }
@@ -89,10 +97,19 @@ class ChromiumReport : public ::testing::Test {
         dir_ = std::make_unique<test::TempDir>();
         SyntheticRunConfig run;
         run.num_closures = 2;
+        run.weak_candidates = 30;
         ReportConfig config;
         config.overview.width = 800;
         config.overview.height = 600;
-        WriteReport(MakeSyntheticRun(run), dir_->path() / "report", config);
+        config.strongest_candidates = 1;
+        const ReportInput input = MakeSyntheticRun(run);
+        WriteReport(input, dir_->path() / "report", config);
+        // A candidate without a page, rendered on demand as `revisit inspect --closure` does.
+        for (std::size_t i = input.closures.size(); i-- > 0;)
+            if (!std::filesystem::exists(dir_->path() / "report" / (ClosureStem(i) + ".html"))) {
+                on_demand_ = WriteClosurePage(input, i, dir_->path() / "report", config).filename().string();
+                break;
+            }
     }
     static void TearDownTestSuite() { dir_.reset(); }
     void SetUp() override {
@@ -102,18 +119,24 @@ class ChromiumReport : public ::testing::Test {
     static std::filesystem::path Scratch() { return dir_->path(); }
 
     static inline std::string chromium_;
+    static inline std::string on_demand_;  ///< file name of the page rendered on demand
     static inline std::unique_ptr<test::TempDir> dir_;
 };
 
-TEST_F(ChromiumReport, IndexClosureAndMapPagesLoadWithoutBrokenImages) {
-    for (const auto& [page, min_images] : {std::pair{"index.html", 4}, std::pair{"closure_0000.html", 4},
-                                           std::pair{"closure_0001.html", 4}, std::pair{"map_0000.html", 1}}) {
+TEST_F(ChromiumReport, IndexClosureMapAndOnDemandPagesLoadWithoutBrokenImages) {
+    ASSERT_FALSE(on_demand_.empty());
+    for (const auto& [page, min_images] : {std::pair<std::string, int>{"index.html", 4}, {"closure_0000.html", 4},
+                                           {"closure_0001.html", 4}, {"map_0000.html", 1}, {on_demand_, 2}}) {
         const ImageCheck check = CheckImages(chromium_, Scratch(), Report() / page);
         EXPECT_GE(check.images, min_images) << page << ": " << check.detail;
         EXPECT_EQ(check.broken, 0) << page << ": " << check.detail;
+        EXPECT_EQ(ReadText(Scratch() / "chromium.log").find("Uncaught"), std::string::npos) << page << ": a script error";
+        if (page == "index.html") {
+            // The inline script ran: a filter box above each sortable table (32 candidates, 20 maps).
+            EXPECT_EQ(check.filters, 2) << check.detail;
+            EXPECT_EQ(check.rows, 32 + 20) << check.detail;
+        }
     }
-    // The chromium log would show script errors; the report has no scripts and must stay clean.
-    EXPECT_EQ(ReadText(Scratch() / "chromium.log").find("Uncaught"), std::string::npos);
 }
 
 TEST_F(ChromiumReport, ProbeDetectsABrokenImage) {

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include "render/palette.hpp"
+#include "report/pair_page.hpp"
 #include "report/plots.hpp"
+#include "report/report_templates.hpp"
 #include "report/report_writer.hpp"
 #include "report/svg_plot.hpp"
 #include "report/synthetic_report.hpp"
@@ -9,8 +11,11 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <oneapi/tbb/global_control.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <regex>
@@ -82,22 +87,37 @@ TEST(SvgPlots, ApePlotUsesTheTrajectoryColours) {
     EXPECT_NE(svg.find("#005ae6"), std::string::npos);  // palette::kCorrected
 }
 
+/// The .html files of a report folder.
+std::set<std::string> Pages(const std::filesystem::path& dir) {
+    std::set<std::string> pages;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        if (entry.path().extension() == ".html") pages.insert(entry.path().filename().string());
+    return pages;
+}
+
+std::size_t CountOf(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+    return n;
+}
+
 TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     test::TempDir dir;
     const ReportInput input = SmallRun();
     const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
     ASSERT_EQ(input.map_ids.size(), 20u);
-    EXPECT_EQ(stats.pages, 4 + 20);  // index + 3 closures + 20 local maps
-    std::set<std::string> pages{"index.html"};
-    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
-        if (entry.path().extension() == ".html") pages.insert(entry.path().filename().string());
-    EXPECT_EQ(pages.size(), 24u);
+    // Index, 3 closures and the 6 maps they join (0-2 and 10-12); the other 14 maps are table rows.
+    EXPECT_EQ(stats.pages, 1 + 3 + 6);
+    const std::set<std::string> pages = Pages(dir.path());
+    EXPECT_EQ(pages.size(), 10u);
     int images = 0;
     for (const auto& page : pages) {
         const std::string html = ReadText(dir / page);
         EXPECT_EQ(html.find("http://"), std::string::npos) << page;  // self-contained: no network
         EXPECT_EQ(html.find("https://"), std::string::npos) << page;
-        EXPECT_EQ(html.find("<script"), std::string::npos) << page;
+        // Only the index has a script (sorting and filtering its tables), inline.
+        EXPECT_EQ(CountOf(html, "<script"), page == "index.html" ? 1u : 0u) << page;
+        EXPECT_EQ(html.find("<script src"), std::string::npos) << page;
         for (const auto& ref : References(html)) {
             if (ref == "data:,") continue;  // the empty favicon
             EXPECT_TRUE(std::filesystem::exists(dir / ref)) << page << " references missing " << ref;
@@ -145,8 +165,13 @@ TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     const std::string map_page = ReadText(dir / "map_0000.html");
     EXPECT_NE(map_page.find("href=\"closure_0000.html\""), std::string::npos);
     EXPECT_NE(map_page.find("href=\"map_0010.html\""), std::string::npos);
-    EXPECT_NE(ReadText(dir / "index.html").find("href=\"map_0019.html\""), std::string::npos);
+    // A map without a page is a row of the index's table naming the command that renders it on demand.
+    const std::string index = ReadText(dir / "index.html");
+    EXPECT_EQ(index.find("href=\"map_0019.html\""), std::string::npos);
+    EXPECT_NE(index.find("revisit inspect RUN_DIR --map 19"), std::string::npos);
+    WriteSingleMapPage(input, 5, dir.path(), SmallPictures());
     EXPECT_NE(ReadText(dir / "map_0005.html").find("No closure candidate involves this map"), std::string::npos);
+    EXPECT_THROW(WriteSingleMapPage(input, 20, dir.path(), SmallPictures()), std::out_of_range);
 
     // 3D views: both map colours.
     const cv::Mat after3d = cv::imread((dir / "closure_0000_3d_after.png").string());
@@ -154,18 +179,89 @@ TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     EXPECT_GT(CountColor(after3d, palette::kRefMap, 20), 500);
 }
 
-TEST(WriteReport, IsDeterministic) {
+TEST(WriteReport, IsTheSameAtAnyThreadCount) {
     test::TempDir a, b;
-    const ReportInput input = SmallRun();
-    WriteReport(input, a.path(), SmallPictures());
-    WriteReport(input, b.path(), SmallPictures());
+    SyntheticRunConfig run;
+    run.num_closures = 4;
+    run.weak_candidates = 40;
+    const ReportInput input = MakeSyntheticRun(run);
+    ReportConfig config = SmallPictures();
+    config.strongest_candidates = 3;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        WriteReport(input, a.path(), config);
+    }
+    {
+        tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+        WriteReport(input, b.path(), config);
+    }
     int compared = 0;
     for (const auto& entry : std::filesystem::directory_iterator(a.path())) {
         const auto name = entry.path().filename();
         EXPECT_EQ(ReadText(entry.path()), ReadText(b / name.string())) << name;
         ++compared;
     }
+    EXPECT_EQ(compared, static_cast<int>(std::distance(std::filesystem::directory_iterator(b.path()), {})));
     EXPECT_GT(compared, 20);
+}
+
+TEST(WriteReport, HundredsOfCandidatesGetTableRowsAndPagesOnlyForTheBoundedSet) {
+    test::TempDir dir;
+    SyntheticRunConfig run;
+    run.num_closures = 3;  // reached the acceptance threshold: always a page
+    run.reject_fraction = 0.0;
+    run.weak_candidates = 400;
+    const ReportInput input = MakeSyntheticRun(run);
+    ReportConfig config = SmallPictures();
+    config.strongest_candidates = 4;
+    std::vector<std::size_t> progress, totals;
+    const ReportStats stats = WriteReport(input, dir.path(), config, [&](std::size_t done, std::size_t total) {
+        progress.push_back(done);
+        totals.push_back(total);
+    });
+
+    // Pages: the 3 closures that reached the threshold and the 4 strongest of the 400 below it.
+    std::set<std::string> closure_pages;
+    for (const auto& page : Pages(dir.path()))
+        if (page.rfind("closure_", 0) == 0) closure_pages.insert(page);
+    EXPECT_EQ(closure_pages.size(), 7u);
+    for (const char* page : {"closure_0000.html", "closure_0001.html", "closure_0002.html"}) EXPECT_TRUE(closure_pages.count(page)) << page;
+    int weakest_with_page = 1000, strongest_without = 0;
+    for (std::size_t i = 3; i < input.closures.size(); ++i) {
+        const int inliers = input.closures[i].closure.num_inliers;
+        if (closure_pages.count(ClosureStem(i) + ".html")) weakest_with_page = std::min(weakest_with_page, inliers);
+        else strongest_without = std::max(strongest_without, inliers);
+    }
+    EXPECT_GE(weakest_with_page, strongest_without);
+    EXPECT_EQ(progress.front(), 0u);
+    EXPECT_EQ(progress.back(), static_cast<std::size_t>(stats.pages));
+    EXPECT_EQ(progress.size(), static_cast<std::size_t>(stats.pages) + 1);  // the start, then each page (the index last)
+    for (const auto total : totals) EXPECT_EQ(total, static_cast<std::size_t>(stats.pages));
+    EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+
+    // Every candidate is one row of the index's table; those without a page name the command that renders it.
+    const std::string index = ReadText(dir / "index.html");
+    const std::size_t rows = CountOf(index, "<tr class=\"status-");
+    EXPECT_EQ(rows, 403u);
+    EXPECT_EQ(CountOf(index, "revisit inspect RUN_DIR --closure "), 403u - 7u + 1u);  // + the sentence above the table
+    EXPECT_NE(index.find("<tr class=\"status-below-threshold\"><td>250</td>"), std::string::npos);
+    EXPECT_LT(index.size(), 400u * 1024u);  // [bytes]
+    // The counts at a glance come before any picture.
+    EXPECT_LT(index.find("closure candidates (&gt;= 3 inliers)</th><td>403</td>"), index.find("<img"));
+    EXPECT_NE(index.find("true closures (against the reference)</th><td>3</td>"), std::string::npos);
+
+    // Any listed candidate renders on demand, linked to the index and to its neighbours with pages.
+    const std::size_t listed = 250;
+    ASSERT_FALSE(closure_pages.count(ClosureStem(listed) + ".html"));
+    const auto page = WriteClosurePage(input, listed, dir.path(), config);
+    EXPECT_EQ(page.filename(), "closure_0250.html");
+    const std::string html = ReadText(page);
+    EXPECT_NE(html.find("href=\"index.html\""), std::string::npos);
+    EXPECT_NE(html.find("below the acceptance threshold"), std::string::npos);
+    for (const auto& ref : References(html)) {
+        if (ref == "data:,") continue;
+        EXPECT_TRUE(std::filesystem::exists(dir / ref)) << ref;
+    }
 }
 
 TEST(WriteReport, RunWithoutGroundTruthOrStoredMapsStillGivesValidPages) {
@@ -180,8 +276,8 @@ TEST(WriteReport, RunWithoutGroundTruthOrStoredMapsStillGivesValidPages) {
     input.load_density_image = nullptr;
     input.load_global_map = nullptr;
     const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
-    EXPECT_EQ(stats.pages, 4 + 20);
-    EXPECT_NE(ReadText(dir / "map_0003.html").find("No map data available"), std::string::npos);
+    EXPECT_EQ(stats.pages, 1 + 3 + 6);
+    EXPECT_NE(ReadText(dir / "map_0002.html").find("No map data available"), std::string::npos);
     const std::string index = ReadText(dir / "index.html");
     EXPECT_NE(index.find("No evaluation in this run"), std::string::npos);
     EXPECT_EQ(index.find("precision_recall.svg"), std::string::npos);
@@ -223,6 +319,37 @@ TEST(WriteMapPairPage, ShowsAnyTwoMapsAtTheirOdometryPose) {
     const cv::Mat pair = cv::imread((dir / "maps_12_3_matches.png").string());
     EXPECT_GT(CountColor(pair, palette::kKeypoint, 40), 80 * 8);
     EXPECT_LT(CountColor(pair, palette::kInlier, 40), 300);  // the legend sample only
+}
+
+TEST(ReportTemplates, ComeFromShareAndMissingOnesAreNamed) {
+    const auto share = std::filesystem::path(REVISIT_SOURCE_DIR) / "share";
+    const ReportTemplates templates = LoadReportTemplates(share);
+    EXPECT_NE(templates.style.find("font-family"), std::string::npos);
+    // Every page inlines the stylesheet from the file, so restyling needs no rebuild.
+    test::TempDir dir;
+    WriteReport(SmallRun(), dir.path(), SmallPictures());
+    EXPECT_NE(ReadText(dir / "closure_0000.html").find(templates.style), std::string::npos);
+
+    test::TempDir empty;
+    try {
+        LoadReportTemplates(empty.path());
+        ADD_FAILURE() << "no error for missing templates";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find((empty / "report" / "page.html").string()), std::string::npos) << error.what();
+    }
+    // REVISIT_SHARE_DIR wins when set, and a wrong one is an error naming it.
+    ASSERT_EQ(setenv("REVISIT_SHARE_DIR", share.c_str(), 1), 0);
+    EXPECT_EQ(FindShareDir(), share);
+    const std::string missing = (empty / "nowhere").string();
+    ASSERT_EQ(setenv("REVISIT_SHARE_DIR", missing.c_str(), 1), 0);
+    try {
+        FindShareDir();
+        ADD_FAILURE() << "no error for a wrong REVISIT_SHARE_DIR";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find(missing), std::string::npos) << error.what();
+    }
+    unsetenv("REVISIT_SHARE_DIR");
+    EXPECT_EQ(FillTemplate("<{{a}}|{{b}}|{{c}}>", {{"a", "x{{b}}"}, {"b", "y"}}), "<x{{b}}|y|{{c}}>");
 }
 
 }  // namespace
