@@ -5,6 +5,20 @@
 
 namespace revisit {
 
+namespace {
+
+/// Truth of the accepted closures, revisit coverage and where the missed revisits were lost.
+void PrintVerification(std::ostream& out, const RunEvaluation& e) {
+    out << "  accepted closures: " << e.truth.num_true << " true / " << e.truth.num_false << " false\n";
+    out << "  revisit coverage:  " << std::setprecision(0) << 100.0 * e.coverage.coverage << "% (" << e.coverage.covered_scans
+        << " of " << e.coverage.revisit_scans << " revisiting scans in a map joined by a true closure)\n";
+    out << "  overlapping map pairs: " << e.missed.overlapping_pairs << ", found " << e.missed.found_pairs;
+    for (const auto& [stage, count] : e.missed.per_stage) out << "; " << MissStageName(stage) << ": " << count;
+    out << '\n' << std::setprecision(1);
+}
+
+}  // namespace
+
 void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation) {
     std::size_t density = 0, refined = 0, verified = 0;
     for (const auto& c : state.closures) {
@@ -53,6 +67,7 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
             << (std::abs(change) < 0.5 ? "%: unchanged" : change < 0.0 ? "% lower" : "% higher: the closures made it worse")
             << ")\n";
     }
+    PrintVerification(out, *evaluation);
 }
 
 }  // namespace revisit

@@ -6,6 +6,7 @@
 #include "report/map_page.hpp"
 #include "report/pair_page.hpp"
 #include "report/plots.hpp"
+#include "report/revisit_section.hpp"
 #include "report/svg_plot.hpp"
 
 #include <cstdio>
@@ -154,6 +155,8 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     }
     if (input.metrics.rows.empty() && input.pr_curves.empty() && input.ape_after.values.empty())
         index.Paragraph("No evaluation in this run (no ground truth).");
+
+    AddRevisitSection(index, input);
 
     index.Heading("Closures", 2, "closures");
     std::size_t accepted = 0;
