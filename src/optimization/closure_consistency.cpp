@@ -112,10 +112,16 @@ double CycleChi2(const ConsistencyClosure& a, const ConsistencyClosure& b, const
     double var_t = 2.0 * config.closure_sigma_translation * config.closure_sigma_translation;
     const double sigma_closure_rotation = config.closure_sigma_rotation_deg * M_PI / 180.0;
     double var_r = 2.0 * sigma_closure_rotation * sigma_closure_rotation;
-    for (const double travel : {Travel(odometry, a.ref_node, b.ref_node), Travel(odometry, b.query_node, a.query_node)}) {
+    const std::pair<int, int> legs[] = {{a.ref_node, b.ref_node}, {b.query_node, a.query_node}};
+    for (const auto& [from, to] : legs) {
+        const double travel = Travel(odometry, from, to);
         const double sigma_t = std::max(noise.min_translation, noise.translation_per_m * travel);
         const double sigma_r = std::max(noise.min_rotation, noise.rotation_per_m * travel);
-        var_t += sigma_t * sigma_t;
+        // Heading drift along the leg also moves its end: sigma_r times the mean distance from the path
+        // to its end, travel / 2 on a straight leg (rotation_per_m * travel^2 / 2). Where heading drifts
+        // faster than position (2D lasers indoors) this dominates the cycle's translation error.
+        const double swing = sigma_r * travel / 2.0;
+        var_t += sigma_t * sigma_t + swing * swing;
         var_r += sigma_r * sigma_r;
     }
     const double angle = Eigen::AngleAxisd(cycle.linear()).angle();
@@ -128,22 +134,50 @@ std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adj
 }
 
 void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry) {
-    std::vector<char> row(closures_.size() + 1, 1);
-    for (std::size_t k = 0; k < closures_.size(); ++k) {
+    const std::size_t v = closures_.size();
+    std::vector<char> row(v + 1, 1);
+    for (std::size_t k = 0; k < v; ++k) {
         row[k] = CycleChi2(closures_[k], closure, odometry, noise_, config_) <= config_.chi2_threshold;
         consistent_[k].push_back(row[k]);
     }
     closures_.push_back(closure);
-    consistent_.push_back(std::move(row));
+    consistent_.push_back(row);
+    in_set_.push_back(0);
+
+    // Incremental maximum clique: a new vertex grows the largest clique by at most one, and only with
+    // its own neighbours. If it agrees with the whole current set, the set plus it is maximum;
+    // otherwise the only possible better set is it plus a clique among its neighbours.
+    bool agrees_with_set = true;
+    for (std::size_t k = 0; k < v && agrees_with_set; ++k) agrees_with_set = !in_set_[k] || row[k];
+    if (agrees_with_set) {
+        in_set_[v] = 1;
+        ++set_size_;
+        set_weight_ += closure.score;
+        return;
+    }
+    std::vector<std::size_t> neighbours;
+    for (std::size_t k = 0; k < v; ++k)
+        if (row[k]) neighbours.push_back(k);
+    if (neighbours.size() + 1 < set_size_) return;
+    std::vector<std::vector<char>> adjacency(neighbours.size(), std::vector<char>(neighbours.size(), 0));
+    std::vector<double> weight(neighbours.size());
+    for (std::size_t a = 0; a < neighbours.size(); ++a) {
+        weight[a] = closures_[neighbours[a]].score;
+        for (std::size_t b = 0; b < neighbours.size(); ++b) adjacency[a][b] = consistent_[neighbours[a]][neighbours[b]];
+    }
+    const auto clique = MaximumClique(adjacency, weight, config_.exact_max_steps);
+    double clique_weight = closure.score;
+    for (std::size_t a : clique) clique_weight += weight[a];
+    if (clique.size() + 1 < set_size_ || (clique.size() + 1 == set_size_ && clique_weight <= set_weight_)) return;
+    std::fill(in_set_.begin(), in_set_.end(), 0);
+    for (std::size_t a : clique) in_set_[neighbours[a]] = 1;
+    in_set_[v] = 1;
+    set_size_ = clique.size() + 1;
+    set_weight_ = clique_weight;
 }
 
 std::vector<char> ClosureConsistency::ConsistentSet() const {
-    std::vector<char> keep(closures_.size(), config_.enabled ? 0 : 1);
-    if (!config_.enabled) return keep;
-    std::vector<double> weight;
-    for (const auto& c : closures_) weight.push_back(c.score);
-    for (std::size_t k : MaximumClique(consistent_, weight, config_.exact_max_steps)) keep[k] = 1;
-    return keep;
+    return config_.enabled ? in_set_ : std::vector<char>(closures_.size(), 1);
 }
 
 }  // namespace revisit

@@ -35,9 +35,9 @@ struct ConsistencyOdometry {
 };
 
 /// chi^2 of the cycle T_qa_ra * odom(ra -> rb) * T_qb_rb^-1 * odom(qb -> qa). Odometry sigma grows
-/// linearly with the travel along each leg (noise.translation_per_m read as total position drift per
-/// metre, as KITTI's translation error, so there is no separate lever-arm term); each closure adds
-/// the config's closure sigma. Translation and rotation errors are taken as isotropic.
+/// linearly with the travel along each of the two odometry legs (as the pose graph's odometry edges),
+/// plus the position error the leg's heading drift causes (rotation sigma x travel / 2); each closure
+/// adds the config's closure sigma. Translation and rotation errors are taken as isotropic.
 double CycleChi2(const ConsistencyClosure& a, const ConsistencyClosure& b, const ConsistencyOdometry& odometry,
                  const OdometryNoise& noise, const ClosureConsistencyConfig& config);
 
@@ -52,10 +52,13 @@ class ClosureConsistency {
   public:
     ClosureConsistency(const ClosureConsistencyConfig& config, const OdometryNoise& noise) : config_(config), noise_(noise) {}
 
-    /// Adds a closure; the odometry must hold both of its nodes (and those of every earlier closure).
+    /// Adds a closure and updates the set; the odometry must hold both of its nodes (and those of every
+    /// earlier closure). Cost: one cycle per earlier closure, and a clique search among the new
+    /// closure's consistent partners only when it disagrees with the current set.
     void Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry);
-    /// One flag per added closure: in the maximum consistent set. A single closure is kept (nothing
-    /// to check it against); with the check disabled every closure is kept.
+    /// One flag per added closure: in the maximum consistent set (ties: the larger sum of scores), kept
+    /// incrementally as closures arrive. A single closure is kept (nothing to check it against); with
+    /// the check disabled every closure is kept.
     std::vector<char> ConsistentSet() const;
 
     std::size_t size() const { return closures_.size(); }
@@ -66,6 +69,9 @@ class ClosureConsistency {
     OdometryNoise noise_;
     std::vector<ConsistencyClosure> closures_;
     std::vector<std::vector<char>> consistent_;
+    std::vector<char> in_set_;  ///< the maximum consistent set, kept up to date by Add
+    std::size_t set_size_ = 0;
+    double set_weight_ = 0.0;
 };
 
 }  // namespace revisit
