@@ -108,8 +108,8 @@ json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEva
                             {"true", verdict.is_true}, {"translation_error_m", verdict.error.translation},
                             {"yaw_error_deg", verdict.error.yaw_deg}});
     }
-    json per_stage = json::object();
-    for (const auto& [stage, count] : e.missed.per_stage) per_stage[MissStageName(stage)] = count;
+    json per_stage = json::array();  // in chain order
+    for (const auto& [stage, count] : e.missed.per_stage) per_stage.push_back({{"stage", MissStageName(stage)}, {"map_pairs", count}});
     json missed = json::array();
     for (const auto& m : e.missed.missed) {
         missed.push_back({{"query_map", m.query_map}, {"ref_map", m.ref_map}, {"gt_scan_pairs", m.gt_scan_pairs},
@@ -205,7 +205,7 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
         true_pairs.emplace_back(MapIndexOfScan(ranges, accepted[k].query_first_scan), MapIndexOfScan(ranges, accepted[k].ref_first_scan));
     }
     e.coverage = ComputeRevisitCoverage(state.reference, ranges, true_pairs, config.truth);
-    e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_inliers);
+    e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_matches, config.detector.min_inliers);
     WriteMetrics(run, e, VerificationJson(e, accepted, config.truth));
     return e;
 }

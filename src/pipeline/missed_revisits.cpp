@@ -10,6 +10,7 @@ const char* MissStageName(MissStage stage) {
     switch (stage) {
         case MissStage::kSkippedRecent: return "never compared: skipped as recent";
         case MissStage::kNotVoted: return "never compared: not voted";
+        case MissStage::kNotSelected: return "never compared: not selected (top half by votes)";
         case MissStage::kTooFewMatches: return "too few matches";
         case MissStage::kTooFewInliers: return "too few inliers";
         case MissStage::kRefinementRejected: return "refinement rejected";
@@ -40,7 +41,7 @@ void Raise(Outcome& outcome, MissStage stage, std::string detail) {
 }  // namespace
 
 MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanPair>& gt_scan_pairs,
-                                  const ClosureTruth& truth, int min_inliers) {
+                                  const ClosureTruth& truth, int min_matches, int min_inliers) {
     std::map<int, std::size_t> index_of_id;
     for (std::size_t m = 0; m < state.maps.size(); ++m) index_of_id[state.maps[m].id] = m;
     auto pair_of = [&](int a_id, int b_id) -> std::optional<MapPair> {
@@ -65,7 +66,10 @@ MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanP
         switch (c.stage) {
             case ComparisonStage::kSkippedRecent: Raise(outcome, MissStage::kSkippedRecent, ""); break;
             case ComparisonStage::kNotSelected:
-                Raise(outcome, MissStage::kTooFewMatches, std::to_string(c.votes) + " votes");
+                if (c.votes < min_matches)
+                    Raise(outcome, MissStage::kTooFewMatches, std::to_string(c.votes) + " votes < " + std::to_string(min_matches));
+                else
+                    Raise(outcome, MissStage::kNotSelected, std::to_string(c.votes) + " votes");
                 break;
             case ComparisonStage::kCompared:
                 // At or above gamma the closure's own record says what happened next.

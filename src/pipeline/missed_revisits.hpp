@@ -15,7 +15,8 @@ namespace revisit {
 enum class MissStage {
     kSkippedRecent,        ///< never compared: a recent map of the same session
     kNotVoted,             ///< never compared: no descriptor of the query voted for the reference map
-    kTooFewMatches,        ///< voted for, but below min_matches (or outside the paper's top half)
+    kNotSelected,          ///< never compared: enough votes, but outside the paper's top half by votes
+    kTooFewMatches,        ///< voted for, but below min_matches
     kTooFewInliers,        ///< RANSAC found fewer than gamma inliers
     kRefinementRejected,   ///< the 3D refinement rejected it (its reason is in `detail`)
     kConsistencyRejected,  ///< inconsistent with other closures (PCM)
@@ -41,6 +42,6 @@ struct MissedRevisits {
 
 /// `truth` judges the accepted density closures of `state.closures`, in their order.
 MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanPair>& gt_scan_pairs,
-                                  const ClosureTruth& truth, int min_inliers);
+                                  const ClosureTruth& truth, int min_matches, int min_inliers);
 
 }  // namespace revisit

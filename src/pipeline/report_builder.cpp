@@ -101,7 +101,8 @@ std::optional<RevisitFindings> ReadRevisitFindings(const nlohmann::json& metrics
         "overlapping map pairs: " + std::to_string(missed.value("overlapping_map_pairs", 0)) + ", joined by a true closure: " +
             std::to_string(missed.value("found_map_pairs", 0))};
     findings.per_stage.header = {"stage that lost it", "map pairs"};
-    for (const auto& [stage, count] : missed["per_stage"].items()) findings.per_stage.rows.push_back({stage, count.dump()});
+    for (const auto& stage : missed["per_stage"])
+        findings.per_stage.rows.push_back({stage.value("stage", "?"), stage["map_pairs"].dump()});
     findings.missed.header = {"query map", "reference map", "ground-truth scan pairs", "stage", "detail"};
     for (const auto& m : missed["missed"]) {
         findings.missed.rows.push_back({m["query_map"].dump(), m["ref_map"].dump(), m["gt_scan_pairs"].dump(),
