@@ -1,11 +1,13 @@
-/// Back-end cases: refinement per closure, the pose graph over a (nodes x closures) grid, ground-truth
-/// closure generation per scan, and report rendering per closure.
+/// Back-end cases: refinement per closure, the pose graph over a (nodes x closures) grid, the online
+/// closure-consistency check per map, ground-truth closure generation per scan, and report rendering per closure.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "benchmark/cases.hpp"
 #include "core/se3.hpp"
 #include "evaluation/ground_truth_closures.hpp"
+#include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
 #include "optimization/refinement.hpp"
 #include "report/report_writer.hpp"
@@ -92,6 +94,39 @@ void PoseGraphCases(const CaseContext& c) {
                   "OptimizePoseGraph, Cauchy, drifted start, " + std::to_string(iterations) + " iterations");
         }
     }
+}
+
+void ConsistencyCases(const CaseContext& c) {
+    // Worst case for the pairwise check: maps every 10 m around a 400 m loop, each map after the first
+    // lap closing with the map one lap earlier, one closure in ten wrong by 5 m and 0.1 rad; the
+    // whole online sequence (one row of the table and one maximum-consistent-set search per closure).
+    const std::size_t maps = std::size_t(c.scale.consistency_maps);
+    const Poses truth = LoopRoute(maps, 10.0);
+    Poses odometry{truth[0]};
+    std::vector<double> travel{0.0};
+    for (std::size_t i = 1; i < maps; ++i) {
+        odometry.push_back(odometry.back() * PoseFromXYZRPY(0, 0, 0, 0, 0, 5e-4) * truth[i - 1].inverse() * truth[i]);
+        travel.push_back(10.0 * double(i));
+    }
+    const std::size_t per_lap = 40;
+    std::size_t kept = 0, closures = 0;
+    Measurement measured = Measure("consistency/" + std::to_string(maps) + " maps", "ms/map", FigureKind::kMsPerItem,
+                                   Heavy(c.scale), [&] {
+                                       ClosureConsistency consistency(ClosureConsistencyConfig{}, OdometryNoise{});
+                                       std::vector<char> keep;
+                                       for (std::size_t q = per_lap; q < maps; ++q) {
+                                           const std::size_t r = q - per_lap;
+                                           Eigen::Isometry3d T = truth[q].inverse() * truth[r];
+                                           if (q % 10 == 0) T = T * PoseFromXYZRPY(5.0, 0, 0, 0, 0, 0.1);
+                                           consistency.Add({int(q), int(r), T, 20.0}, {&odometry, &travel});
+                                           keep = consistency.ConsistentSet();
+                                       }
+                                       closures = keep.size();
+                                       kept = std::size_t(std::count(keep.begin(), keep.end(), 1));
+                                       return double(maps);
+                                   });
+    c.Add(std::move(measured), "ClosureConsistency::Add + ConsistentSet after every closure, " + std::to_string(closures) +
+                                   " closures (1 in 10 wrong), " + std::to_string(kept) + " kept at the end");
 }
 
 void GroundTruthCases(const CaseContext& c) {

@@ -34,6 +34,7 @@ void TreeCases(const CaseContext& c);
 void RefinementCases(const CaseContext& c);
 void PoseGraphCases(const CaseContext& c);
 void GroundTruthCases(const CaseContext& c);
+void ConsistencyCases(const CaseContext& c);
 void ReportCases(const CaseContext& c);
 void EndToEndCases(const CaseContext& c);
 

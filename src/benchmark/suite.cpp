@@ -24,7 +24,7 @@ const CaseGroup kGroups[] = {
     {"end_to_end", EndToEndCases},   {"reader", ReaderCases},         {"odometry", OdometryCases},
     {"local_map", LocalMapCases},    {"closures", ClosureStageCases}, {"tree", TreeCases},
     {"refinement", RefinementCases}, {"pose_graph", PoseGraphCases},  {"ground_truth", GroundTruthCases},
-    {"report", ReportCases},
+    {"consistency", ConsistencyCases}, {"report", ReportCases},
 };
 
 std::filesystem::path FreshScratch() {
@@ -47,6 +47,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.database_sizes = {10, 30};
         s.tree_queries = 3;
         s.graph_grid = {{300, 10}};
+        s.consistency_maps = 100;
         s.gt_scans = 60;
         s.report_closures = 1;
         s.end_to_end_scans = 12;

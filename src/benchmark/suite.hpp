@@ -20,6 +20,7 @@ struct SuiteScale {
     std::vector<int> database_sizes;              ///< tree query+insert curve [maps]
     int tree_queries = 20;                        ///< timed query+insert per database size
     std::vector<std::pair<int, int>> graph_grid;  ///< pose graph (nodes, closures)
+    int consistency_maps = 1000;                  ///< maps of the online closure-consistency case
     std::size_t gt_scans = 300;                   ///< scans of the ground-truth closure case
     int report_closures = 5;                      ///< closure pages rendered
     std::size_t end_to_end_scans = 150;           ///< 64-beam city scans through `revisit run`; 0: the whole route

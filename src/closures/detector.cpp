@@ -123,7 +123,8 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     stats_.tree_ms = MsSince(start);
 
     start = Clock::now();
-    const auto candidates = SelectCandidates(votes, record);
+    std::vector<bool> skipped;
+    const auto candidates = SelectCandidates(votes, record, skipped);
     std::vector<int> slot(records_.size(), -1);
     for (std::size_t c = 0; c < candidates.size(); ++c) slot[candidates[c]] = int(c);
     std::vector<std::vector<TreeMatch>> grouped(candidates.size());
@@ -133,6 +134,19 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     std::vector<Closure> verified(candidates.size());
     tbb::parallel_for(std::size_t(0), candidates.size(),
                       [&](std::size_t c) { verified[c] = Verify(record, candidates[c], grouped[c]); });
+    comparisons_.clear();
+    std::vector<bool> is_candidate(records_.size(), false);
+    for (std::size_t c : candidates) is_candidate[c] = true;
+    for (std::size_t i = 0; i < records_.size(); ++i) {
+        if (!skipped[i] && (votes[i] == 0 || is_candidate[i])) continue;
+        comparisons_.push_back({record.id, records_[i].id, record.session, records_[i].session,
+                                skipped[i] ? ComparisonStage::kSkippedRecent : ComparisonStage::kNotSelected, votes[i], 0});
+    }
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+        const MapRecord& ref = records_[candidates[c]];
+        comparisons_.push_back({record.id, ref.id, record.session, ref.session, ComparisonStage::kCompared,
+                                votes[candidates[c]], verified[c].num_inliers});
+    }
     std::vector<Closure> closures;
     for (auto& closure : verified) {
         if (closure.num_inliers >= config_.min_inliers) closures.push_back(std::move(closure));
@@ -150,7 +164,24 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     return closures;
 }
 
-std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int>& votes, const MapRecord& query) const {
+const char* ComparisonStageName(ComparisonStage stage) {
+    switch (stage) {
+        case ComparisonStage::kSkippedRecent: return "skipped_recent";
+        case ComparisonStage::kNotSelected: return "not_selected";
+        case ComparisonStage::kCompared: return "compared";
+    }
+    return "compared";
+}
+
+ComparisonStage ComparisonStageFromName(const std::string& name) {
+    for (auto stage : {ComparisonStage::kSkippedRecent, ComparisonStage::kNotSelected, ComparisonStage::kCompared}) {
+        if (name == ComparisonStageName(stage)) return stage;
+    }
+    throw ConfigError("unknown comparison stage '" + name + "'");
+}
+
+std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int>& votes, const MapRecord& query,
+                                                           std::vector<bool>& skipped) const {
     // METHOD.md section 4: never compare with the most recent maps of the same session.
     std::vector<std::size_t> same_session;
     for (std::size_t i = 0; i < records_.size(); ++i) {
@@ -165,6 +196,7 @@ std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int
         const std::size_t n = std::min<std::size_t>(same_session.size(), std::size_t(std::max(0, config_.skip_recent_maps)));
         for (std::size_t k = same_session.size() - n; k < same_session.size(); ++k) skip[same_session[k]] = true;
     }
+    skipped = skip;
     std::vector<std::size_t> eligible;
     for (std::size_t i = 0; i < records_.size(); ++i) {
         if (!skip[i] && votes[i] > 0) eligible.push_back(i);

@@ -2,6 +2,7 @@
 /// Online closure detection: local maps in, closures out (METHOD.md sections 3-5).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "closures/closure.hpp"
@@ -68,6 +69,26 @@ struct AddMapStats {
     int num_closures = 0;
 };
 
+/// What happened to one (query, earlier map) pair in AddMap, for "why was a revisit missed?". Pairs
+/// that are not listed got no vote and were not skipped.
+enum class ComparisonStage {
+    kSkippedRecent,  ///< never compared: a recent map of the same session
+    kNotSelected,    ///< voted for, but below min_matches (or outside the paper's top half)
+    kCompared,       ///< RANSAC ran: `inliers` is its result (closures below the detector's gate are not returned)
+};
+struct MapComparison {
+    int query_id = 0;
+    int ref_id = 0;
+    int query_session = 0;
+    int ref_session = 0;
+    ComparisonStage stage = ComparisonStage::kCompared;
+    int votes = 0;
+    int inliers = 0;
+};
+const char* ComparisonStageName(ComparisonStage stage);
+/// Throws ConfigError on an unknown name.
+ComparisonStage ComparisonStageFromName(const std::string& name);
+
 /// The per-map front end without the database: levelling, density image, features.
 struct MapFeatures {
     GroundAlignment ground;
@@ -94,6 +115,8 @@ class ClosureDetector {
     const std::vector<MapRecord>& maps() const { return records_; }
     const HammingTree& tree() const { return tree_; }
     const AddMapStats& last_stats() const { return stats_; }
+    /// Every skipped, voted-for or compared earlier map of the last AddMap.
+    const std::vector<MapComparison>& last_comparisons() const { return comparisons_; }
     /// The stored density image of map `index` (into maps()); empty when images are not stored.
     cv::Mat Image(std::size_t index) const;
     /// Descriptors of every stored map, in keypoint order.
@@ -105,7 +128,9 @@ class ClosureDetector {
     void Restore(MapRecord record, const std::vector<Descriptor>& descriptors);
 
   private:
-    std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const MapRecord& query) const;
+    /// `skipped` (out): per stored map, true when the skip-recent rule excluded it.
+    std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const MapRecord& query,
+                                              std::vector<bool>& skipped) const;
     Closure Verify(const MapRecord& query, std::size_t ref_index, const std::vector<TreeMatch>& matches) const;
 
     ClosureDetectorConfig config_;
@@ -113,6 +138,7 @@ class ClosureDetector {
     std::vector<MapRecord> records_;
     int session_ = 0;
     AddMapStats stats_;
+    std::vector<MapComparison> comparisons_;
 };
 
 /// Batch helper: every closure of a sequence of local maps, in order of detection.

@@ -44,7 +44,9 @@ std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const std::
         const double distance = config_.straight_line_split
                                     ? (position - current_.T_world_map.translation()).norm()
                                     : travel_ - current_.travel_start;
-        if (distance > config_.split_distance) {
+        const bool too_wide = config_.max_extent > 0.0 &&
+                              (position - current_.T_world_map.translation()).norm() > config_.max_extent;
+        if (distance > config_.split_distance || too_wide) {
             const Eigen::Isometry3d T_world_old = current_.T_world_map;
             closed = CloseCurrent();
             voxels_.clear();

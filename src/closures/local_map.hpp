@@ -16,6 +16,10 @@ struct LocalMapConfig {
     bool straight_line_split = false; ///< later code: straight-line distance; paper: travelled distance
     bool carry_over = false;          ///< later code: points within carry_radius of the new origin seed the next map
     double carry_radius = 100.0;      ///< [m] max_range of the sensor
+    /// Beyond the paper: also close the map when the sensor is farther than this (straight line) from the
+    /// map's first pose, so that a walk which returns within one map's travel (a courtyard loop) meets its
+    /// own past in another map instead of inside the open one [m]; 0 = off.
+    double max_extent = 0.0;
 };
 
 struct LocalMap {

@@ -22,8 +22,9 @@ std::size_t CountPairsBetween(const MapClosureForEval& c, const std::vector<Scan
     return count;
 }
 
-/// Index of the map holding `scan`, or maps.size() when none does.
-std::size_t MapOfScan(const std::vector<MapRange>& maps, std::size_t scan) {
+}  // namespace
+
+std::size_t MapIndexOfScan(const std::vector<MapRange>& maps, std::size_t scan) {
     const auto it = std::upper_bound(maps.begin(), maps.end(), scan,
                                      [](std::size_t s, const MapRange& m) { return s < m.first_scan; });
     if (it == maps.begin()) return maps.size();
@@ -31,19 +32,17 @@ std::size_t MapOfScan(const std::vector<MapRange>& maps, std::size_t scan) {
     return scan <= maps[index].last_scan ? index : maps.size();
 }
 
-}  // namespace
-
 MapRecall ComputeMapRecall(const std::vector<MapRange>& maps, const std::vector<MapClosureForEval>& closures,
                            const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
     std::vector<char> revisits(maps.size(), 0), found(maps.size(), 0);
     for (const auto& pair : gt_scan_pairs) {
-        const std::size_t a = MapOfScan(maps, std::min(pair.first, pair.second));
-        const std::size_t b = MapOfScan(maps, std::max(pair.first, pair.second));
+        const std::size_t a = MapIndexOfScan(maps, std::min(pair.first, pair.second));
+        const std::size_t b = MapIndexOfScan(maps, std::max(pair.first, pair.second));
         if (a < maps.size() && b < maps.size() && a != b) revisits[std::max(a, b)] = 1;
     }
     for (const auto& closure : closures) {
         if (closure.inliers < config.min_inliers) continue;
-        const std::size_t query = MapOfScan(maps, closure.query_first_scan);
+        const std::size_t query = MapIndexOfScan(maps, closure.query_first_scan);
         if (query < maps.size() && CountPairsBetween(closure, gt_scan_pairs) > 0) found[query] = 1;
     }
     MapRecall recall;

@@ -51,6 +51,9 @@ struct MapRange {
     std::size_t last_scan = 0;  ///< inclusive
 };
 
+/// Index of the map holding `scan` (`maps` sorted by first scan, disjoint), or maps.size() when none does.
+std::size_t MapIndexOfScan(const std::vector<MapRange>& maps, std::size_t scan);
+
 struct MapRecall {
     std::size_t maps_with_revisit = 0;  ///< query maps with ground-truth scan pairs to some earlier map
     std::size_t maps_found_right = 0;   ///< of those, maps with an accepted closure to a right earlier map

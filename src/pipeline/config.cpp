@@ -46,6 +46,9 @@ void BindMapsAndImages(ConfigSchema& s, PipelineConfig& c) {
     s.Add("local_map.straight_line_split", &m.straight_line_split, "", "later code: straight-line distance from the first pose (paper: travelled)");
     s.Add("local_map.carry_over", &m.carry_over, "", "later code: points near the new origin seed the next map (paper: off)");
     s.Add("local_map.carry_radius", &m.carry_radius, "m", "carry-over radius (the sensor's max range)", Range{0, 1000});
+    s.Add("local_map.max_extent", &m.max_extent, "m",
+          "also close a map when the sensor is this far (straight line) from its first pose, so a walk that "
+          "returns within one map's travel meets its past in another map (0 = off)", Range{0, 100000});
     auto& d = c.detector.density;
     s.Add("density.resolution", &d.resolution, "m/px", "nu_res (paper: 0.5)", Range{0.005, 10});
     s.Add("density.min_density", &d.min_density, "", "cells below this are zeroed (paper: 0.05)", Range{0, 1});
@@ -133,6 +136,15 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("graph.optimize_every_closures", &n.optimize_every_closures, "", "online re-optimization period", Range{1, 100000});
     s.Add("graph.online_time_budget", &n.online_time_budget, "s", "time bound per online update", Range{0.001, 1000});
     s.Add("graph.min_weight", &n.min_weight, "", "closures ending below this robust weight are rejected as inconsistent (0 = keep all)", Range{0, 1});
+    auto& pcm = c.consistency;
+    s.Add("consistency.enabled", &pcm.enabled, "",
+          "keep only the largest set of pairwise-consistent verified closures before the pose graph (PCM)");
+    s.Add("consistency.chi2_threshold", &pcm.chi2_threshold, "",
+          "two closures agree when their cycle with the odometry has chi^2 below this (99% of chi^2, 6 dof: 16.81)", Range{0.01, 1e9});
+    s.Add("consistency.closure_sigma_translation", &pcm.closure_sigma_translation, "m", "error of one verified closure", Range{1e-4, 100});
+    s.Add("consistency.closure_sigma_rotation_deg", &pcm.closure_sigma_rotation_deg, "deg", "same, rotation", Range{1e-4, 180});
+    s.Add("consistency.exact_max_steps", &pcm.exact_max_steps, "",
+          "maximum-clique search budget (exact below it; past it the best set found is kept)", Range{1, 1000000000});
 }
 
 void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
@@ -144,6 +156,11 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     s.Add("evaluation.travel_gap_ranges", &g.travel_gap_ranges, "", "later segment >= this x max_range of travel after (2)", Range{0, 1000});
     s.Add("evaluation.tau_d", &c.predicted.max_distance, "m", "predicted scan pairs closer than this (6)", Range{0.01, 1000});
     s.Add("evaluation.planar", &c.predicted.planar, "", "distances in x, y only");
+    auto& t = c.truth;
+    s.Add("evaluation.true_translation", &t.true_translation, "m", "an accepted closure is true within this error against the reference", Range{0, 1000});
+    s.Add("evaluation.true_rotation_deg", &t.true_rotation_deg, "deg", "and this yaw error", Range{0, 180});
+    s.Add("evaluation.revisit_radius", &t.revisit_radius, "m", "revisit coverage: a scan this close to an earlier one revisits it", Range{0, 10000});
+    s.Add("evaluation.revisit_gap", &t.revisit_gap, "m", "revisit coverage: of travel at least between the two", Range{0, 1e7});
     auto& sc = c.scan_context;
     s.Add("scan_context.max_radius", &sc.max_radius, "m", "descriptor radius (80)", Range{1, 1000});
     s.Add("scan_context.sensor_height", &sc.sensor_height, "m", "added to z (2.0)", Range{-100, 100});

@@ -7,11 +7,13 @@
 
 #include "closures/detector.hpp"
 #include "closures/local_map.hpp"
+#include "evaluation/closure_truth.hpp"
 #include "evaluation/ground_truth_closures.hpp"
 #include "evaluation/predicted_closures.hpp"
 #include "evaluation/scan_context.hpp"
 #include "io/reader.hpp"
 #include "odometry/odometry_config.hpp"
+#include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
 #include "optimization/refinement.hpp"
 #include "pipeline/config_schema.hpp"
@@ -67,7 +69,9 @@ struct PipelineConfig {
     RefinementConfig refinement;
     PoseGraphConfig graph = PipelineGraphConfig();
     GraphNoiseConfig graph_noise;
+    ClosureConsistencyConfig consistency;
     GtClosureConfig ground_truth;
+    ClosureTruthConfig truth;
     PredictedClosureConfig predicted;
     ScanContextConfig scan_context;
     OutputConfig output;

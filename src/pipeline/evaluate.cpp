@@ -69,6 +69,19 @@ std::vector<MapClosureForEval> ForEval(const RunState& state, const std::string&
     return out;
 }
 
+/// The accepted density closures, for their truth.
+std::vector<MapClosureForEval> Accepted(const RunState& state) {
+    std::vector<MapClosureForEval> accepted;
+    const auto all = ForEval(state, "density");
+    std::size_t k = 0;
+    for (const auto& record : state.closures) {
+        if (record.method != "density") continue;
+        if (record.accepted) accepted.push_back(all[k]);
+        ++k;
+    }
+    return accepted;
+}
+
 TrajectoryEvaluation EvaluateTrajectory(const Poses& estimate, const Poses& reference) {
     return {ComputeApe(estimate, reference, true), ComputeRpe(estimate, reference, 1), ComputeKittiErrors(estimate, reference)};
 }
@@ -87,7 +100,32 @@ json TrajectoryJson(const TrajectoryEvaluation& t) {
             {"kitti_segments", t.kitti.num_segments}};
 }
 
-void WriteMetrics(const RunFolder& run, const RunEvaluation& e) {
+json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEval>& accepted, const ClosureTruthConfig& config) {
+    json closures = json::array();
+    for (std::size_t k = 0; k < accepted.size(); ++k) {
+        const auto& verdict = e.truth.verdicts[k];
+        closures.push_back({{"query_first_scan", accepted[k].query_first_scan}, {"ref_first_scan", accepted[k].ref_first_scan},
+                            {"true", verdict.is_true}, {"translation_error_m", verdict.error.translation},
+                            {"yaw_error_deg", verdict.error.yaw_deg}});
+    }
+    json per_stage = json::array();  // in chain order
+    for (const auto& [stage, count] : e.missed.per_stage) per_stage.push_back({{"stage", MissStageName(stage)}, {"map_pairs", count}});
+    json missed = json::array();
+    for (const auto& m : e.missed.missed) {
+        missed.push_back({{"query_map", m.query_map}, {"ref_map", m.ref_map}, {"gt_scan_pairs", m.gt_scan_pairs},
+                          {"stage", MissStageName(m.stage)}, {"detail", m.detail}});
+    }
+    return {{"closure_truth", {{"true", e.truth.num_true}, {"false", e.truth.num_false},
+                               {"true_translation_m", config.true_translation}, {"true_rotation_deg", config.true_rotation_deg},
+                               {"accepted", closures}}},
+            {"revisit_coverage", {{"radius_m", config.revisit_radius}, {"gap_m", config.revisit_gap},
+                                  {"revisit_scans", e.coverage.revisit_scans}, {"covered_scans", e.coverage.covered_scans},
+                                  {"coverage", e.coverage.coverage}}},
+            {"missed_revisits", {{"overlapping_map_pairs", e.missed.overlapping_pairs}, {"found_map_pairs", e.missed.found_pairs},
+                                 {"per_stage", per_stage}, {"missed", missed}}}};
+}
+
+void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& verification) {
     json methods = json::array();
     for (const auto& m : e.methods) {
         methods.push_back({{"method", m.method}, {"precision", m.best.precision}, {"recall", m.best.recall},
@@ -96,7 +134,7 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e) {
                            {"ape_rmse_before_m", m.ape_rmse_before ? json(*m.ape_rmse_before) : json(nullptr)},
                            {"ape_rmse_after_m", m.ape_rmse_after ? json(*m.ape_rmse_after) : json(nullptr)}});
     }
-    const json metrics = {
+    json metrics = {
         {"ground_truth", {{"segments", e.gt_segments}, {"closing_segment_pairs", e.gt_closing_segment_pairs}, {"scan_pairs", e.gt_scan_pairs}}},
         {"methods", methods},
         {"map_level", {{"assessed_closures", e.map_metrics.closures.size()}, {"right_map_fraction", e.map_metrics.fraction_right},
@@ -105,6 +143,7 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e) {
                        {"maps_with_revisit", e.map_recall.maps_with_revisit}, {"maps_found_right", e.map_recall.maps_found_right},
                        {"map_recall", e.map_recall.recall}}},
         {"trajectory", {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}}}};
+    metrics.update(verification);
     std::ofstream(run.metrics_json()) << std::setw(2) << metrics << '\n';
     for (const auto& [method, sweep] : e.sweeps) {
         std::ofstream csv(run.root() / ("pr_curve_" + method + ".csv"));
@@ -158,7 +197,16 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     std::vector<MapRange> ranges;
     for (const auto& m : state.maps) ranges.push_back({m.first_scan, m.last_scan});
     e.map_recall = ComputeMapRecall(ranges, density, gt.scan_pairs, map_config);
-    WriteMetrics(run, e);
+    const auto accepted = Accepted(state);
+    e.truth = JudgeClosures(accepted, state.reference, config.truth);
+    std::vector<std::pair<std::size_t, std::size_t>> true_pairs;
+    for (std::size_t k = 0; k < accepted.size(); ++k) {
+        if (!e.truth.verdicts[k].is_true) continue;
+        true_pairs.emplace_back(MapIndexOfScan(ranges, accepted[k].query_first_scan), MapIndexOfScan(ranges, accepted[k].ref_first_scan));
+    }
+    e.coverage = ComputeRevisitCoverage(state.reference, ranges, true_pairs, config.truth);
+    e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_matches, config.detector.min_inliers);
+    WriteMetrics(run, e, VerificationJson(e, accepted, config.truth));
     return e;
 }
 

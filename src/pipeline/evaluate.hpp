@@ -5,10 +5,12 @@
 #include <optional>
 #include <ostream>
 
+#include "evaluation/closure_truth.hpp"
 #include "evaluation/method_comparison.hpp"
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/missed_revisits.hpp"
 #include "pipeline/pipeline.hpp"
 
 namespace revisit {
@@ -27,6 +29,9 @@ struct RunEvaluation {
     std::vector<MethodSummary> methods;
     MapMetrics map_metrics;
     MapRecall map_recall;
+    ClosureTruth truth;          ///< the accepted density closures, in run order
+    RevisitCoverage coverage;
+    MissedRevisits missed;
     TrajectoryEvaluation odometry;
     TrajectoryEvaluation corrected;
 };

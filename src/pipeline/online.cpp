@@ -61,7 +61,9 @@ std::unique_ptr<MapPointStore> MakeMemoryMapStore() { return std::make_unique<Me
 
 ClosurePipeline::ClosurePipeline(const PipelineConfig& config, std::unique_ptr<MapPointStore> store)
     : config_(config), store_(store ? std::move(store) : MakeMemoryMapStore()), mapper_(config.local_map),
-      detector_(SweepConfig(config.detector)) {
+      detector_(SweepConfig(config.detector)),
+      consistency_(config.consistency, OdometryNoise{config.graph_noise.odometry_translation_per_m,
+                                                     config.graph_noise.odometry_rotation_per_m}) {
     if (config.output.elevation_ablation) {
         ClosureDetectorConfig elevation = SweepConfig(config.detector);
         elevation.density.elevation_instead = true;
@@ -115,6 +117,8 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     Time("detector.features", stats.features_ms);
     Time("detector.tree", stats.tree_ms);
     Time("detector.ransac", stats.ransac_ms);
+    const auto& comparisons = detector_.last_comparisons();
+    comparisons_.insert(comparisons_.end(), comparisons.begin(), comparisons.end());
     const MapRecord& record = detector_.maps().back();
     if (on_map_closed) on_map_closed(map, record);
 
@@ -133,14 +137,16 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     summary.T_ground_map = record.T_ground_map;
     maps_.push_back(summary);
     nodes_.push_back(map.T_world_map);
+    node_travel_.push_back(map.travel_start);
     corrected_nodes_.push_back(corrected_nodes_.empty() ? map.T_world_map
                                                         : corrected_nodes_.back() * nodes_[nodes_.size() - 2].inverse() *
                                                               map.T_world_map);
 
-    for (const auto& closure : closures) {
-        closures_.push_back(VerifyClosure(closure, stored));
-        update.closures.push_back(closures_.back());
-    }
+    const std::size_t first_new = closures_.size();
+    const std::size_t verified_before = verified_edges_.size();
+    for (const auto& closure : closures) closures_.push_back(VerifyClosure(closure, stored));
+    if (verified_edges_.size() > verified_before) ApplyConsistency();
+    update.closures.assign(closures_.begin() + std::ptrdiff_t(first_new), closures_.end());
     if (elevation_detector_) {
         start = std::chrono::steady_clock::now();
         for (auto& closure : elevation_detector_->AddMap(map)) {
@@ -186,11 +192,33 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
         edge.information = noise.closure_information_from_registration && record.refinement.information.trace() > 0
                                ? record.refinement.information
                                : DiagonalInformation(noise.closure_sigma_translation, noise.closure_sigma_rotation);
-        loop_edges_.push_back(edge);
-        loop_edge_closure_.push_back(closures_.size());
+        verified_edges_.push_back(edge);
+        verified_closure_.push_back(closures_.size());
+        consistency_.Add({closure.query_id, closure.ref_id, record.refinement.T_query_ref, double(closure.num_inliers)},
+                         {&nodes_, &node_travel_});
         ++accepted_since_optimization_;
     }
     return record;
+}
+
+void ClosurePipeline::ApplyConsistency() {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<char> keep = consistency_.ConsistentSet();
+    loop_edges_.clear();
+    loop_edge_closure_.clear();
+    for (std::size_t k = 0; k < verified_edges_.size(); ++k) {
+        ClosureRecord& record = closures_[verified_closure_[k]];
+        record.accepted = keep[k] != 0;
+        if (!record.accepted) {
+            record.reason = "inconsistent with other closures (PCM)";
+            record.graph_weight = 0.0;
+            continue;
+        }
+        record.reason = record.refinement.reason;
+        loop_edges_.push_back(verified_edges_[k]);
+        loop_edge_closure_.push_back(verified_closure_[k]);
+    }
+    Time("consistency", MillisecondsSince(start));
 }
 
 void ClosurePipeline::Optimize(bool final) {

@@ -9,6 +9,7 @@
 
 #include "closures/detector.hpp"
 #include "closures/local_map.hpp"
+#include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run_state.hpp"
@@ -46,6 +47,8 @@ class ClosurePipeline {
     const Poses& CorrectedMapPoses() const { return corrected_nodes_; }
     const std::vector<MapRecordSummary>& maps() const { return maps_; }
     const std::vector<ClosureRecord>& closures() const { return closures_; }
+    /// Every skipped, voted-for or compared (query, earlier map) pair of the density detector.
+    const std::vector<MapComparison>& comparisons() const { return comparisons_; }
     const ClosureDetector& detector() const { return detector_; }
     /// Every scan pose re-anchored to its optimized map origin (METHOD.md section 6).
     Poses CorrectTrajectory(const Poses& T_world_sensor, const std::vector<int>& map_of_scan) const;
@@ -57,6 +60,8 @@ class ClosurePipeline {
   private:
     PipelineUpdate ProcessMap(const LocalMap& map);
     ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points);
+    /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
+    void ApplyConsistency();
     void Optimize(bool final);
     void Time(const std::string& stage, double ms);
 
@@ -67,7 +72,12 @@ class ClosurePipeline {
     std::optional<ClosureDetector> elevation_detector_;
     std::vector<MapRecordSummary> maps_;
     std::vector<ClosureRecord> closures_;
+    std::vector<MapComparison> comparisons_;
     Poses nodes_;            ///< odometry map origins
+    std::vector<double> node_travel_;  ///< [m] travel at each map origin
+    ClosureConsistency consistency_;
+    std::vector<PoseGraphEdge> verified_edges_;      ///< one per closure that passed 3D verification
+    std::vector<std::size_t> verified_closure_;      ///< closures_ index of each verified edge
     Poses corrected_nodes_;  ///< after the last optimization
     std::vector<PoseGraphEdge> loop_edges_;
     std::vector<std::size_t> loop_edge_closure_;  ///< closures_ index of each loop edge

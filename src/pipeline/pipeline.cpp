@@ -197,6 +197,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
 
     state.maps = pipeline.maps();
     state.closures = pipeline.closures();
+    state.comparisons = pipeline.comparisons();
     state.map_of_scan = MapOfScan(state.maps, state.odometry.size());
     state.corrected = state.maps.empty() ? state.odometry : pipeline.CorrectTrajectory(state.odometry, state.map_of_scan);
     state.timings = pipeline.timings();

@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "closures/database_io.hpp"
@@ -62,19 +63,16 @@ std::vector<PrCurve> ReadPrCurves(const RunFolder& run) {
     return curves;
 }
 
-/// The metrics table and, when the evaluation counted them, the true and false closures (top-level
-/// "true_closures" / "false_closures" of metrics.json).
-void ReadMetrics(const RunFolder& run, ReportInput& input) {
+nlohmann::json ReadMetrics(const RunFolder& run) {
     std::ifstream in(run.metrics_json());
-    if (!in) return;
-    const auto metrics = nlohmann::json::parse(in, nullptr, false);
-    if (metrics.is_discarded() || !metrics.is_object()) return;
-    if (metrics.contains("true_closures") && metrics["true_closures"].is_number_integer())
-        input.true_closures = metrics["true_closures"].get<int>();
-    if (metrics.contains("false_closures") && metrics["false_closures"].is_number_integer())
-        input.false_closures = metrics["false_closures"].get<int>();
-    if (!metrics.contains("methods")) return;
-    TextTable& table = input.metrics;
+    if (!in) return {};
+    auto metrics = nlohmann::json::parse(in, nullptr, false);
+    return metrics.is_discarded() ? nlohmann::json{} : metrics;
+}
+
+TextTable ReadMetricsTable(const nlohmann::json& metrics) {
+    TextTable table;
+    if (!metrics.is_object() || !metrics.contains("methods")) return table;
     table.header = {"method", "precision", "recall", "F1", "recall @ 100% P", "APE before [m]", "APE after [m]"};
     const auto number = [](const nlohmann::json& value, int decimals) {
         return value.is_number() ? FormatNumber(value.get<double>(), decimals) : std::string("-");
@@ -84,6 +82,45 @@ void ReadMetrics(const RunFolder& run, ReportInput& input) {
                               number(m["recall_at_100_precision"], 3), number(m["ape_rmse_before_m"], 2),
                               number(m["ape_rmse_after_m"], 2)});
     }
+    return table;
+}
+
+/// Truth, coverage and missed revisits from metrics.json (nullopt for runs evaluated without them).
+std::optional<RevisitFindings> ReadRevisitFindings(const nlohmann::json& metrics) {
+    if (!metrics.is_object() || !metrics.contains("closure_truth") || !metrics.contains("missed_revisits")) return std::nullopt;
+    RevisitFindings findings;
+    const auto& truth = metrics["closure_truth"];
+    const auto& coverage = metrics["revisit_coverage"];
+    const auto& missed = metrics["missed_revisits"];
+    findings.lines = {
+        "accepted closures: " + std::to_string(truth.value("true", 0)) + " true / " + std::to_string(truth.value("false", 0)) +
+            " false (true within " + FormatNumber(truth.value("true_translation_m", 0.0), 2) + " m and " +
+            FormatNumber(truth.value("true_rotation_deg", 0.0), 1) + " deg of the reference)",
+        "revisit coverage: " + FormatNumber(100.0 * coverage.value("coverage", 0.0), 0) + "% of " +
+            std::to_string(coverage.value("revisit_scans", 0)) + " scans that come back within " +
+            FormatNumber(coverage.value("radius_m", 0.0), 1) + " m of a place passed " + FormatNumber(coverage.value("gap_m", 0.0), 0) +
+            " m of travel earlier lie in a map joined to it by a true closure",
+        "overlapping map pairs: " + std::to_string(missed.value("overlapping_map_pairs", 0)) + ", joined by a true closure: " +
+            std::to_string(missed.value("found_map_pairs", 0))};
+    findings.per_stage.header = {"stage that lost it", "map pairs"};
+    for (const auto& stage : missed["per_stage"])
+        findings.per_stage.rows.push_back({stage.value("stage", "?"), stage["map_pairs"].dump()});
+    findings.missed.header = {"query map", "reference map", "ground-truth scan pairs", "stage", "detail"};
+    for (const auto& m : missed["missed"]) {
+        findings.missed.rows.push_back({m["query_map"].dump(), m["ref_map"].dump(), m["gt_scan_pairs"].dump(),
+                                        m.value("stage", ""), m.value("detail", "")});
+    }
+    return findings;
+}
+
+/// Accepted closures the evaluation judged false, by (query first scan, reference first scan).
+std::set<std::pair<std::size_t, std::size_t>> FalseClosures(const nlohmann::json& metrics) {
+    std::set<std::pair<std::size_t, std::size_t>> result;
+    if (!metrics.is_object() || !metrics.contains("closure_truth")) return result;
+    for (const auto& c : metrics["closure_truth"]["accepted"]) {
+        if (!c.value("true", true)) result.emplace(c.value("query_first_scan", std::size_t{0}), c.value("ref_first_scan", std::size_t{0}));
+    }
+    return result;
 }
 
 }  // namespace
@@ -116,6 +153,8 @@ ReportInput LoadReportInput(const RunFolder& run) {
         for (const auto& T : state.reference) aligned.push_back(T_ref_est.inverse() * T);
         input.reference = Timed(state, aligned);
     }
+    const nlohmann::json metrics = ReadMetrics(run);
+    const auto false_closures = FalseClosures(metrics);
     for (const auto& record : state.closures) {
         if (record.method != "density") continue;
         ClosureEntry entry;
@@ -124,6 +163,8 @@ ReportInput LoadReportInput(const RunFolder& run) {
         entry.reached_threshold = record.refined;
         entry.verified = record.refined && record.refinement.accepted;
         entry.reason = record.accepted ? "accepted (graph weight " + FormatNumber(record.graph_weight, 2) + ")" : record.reason;
+        if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first}))
+            entry.reason += ", FALSE against the reference poses";
         if (record.refined) {
             entry.fitness = record.refinement.overlap;
             entry.rmse = record.refinement.rms;
@@ -142,7 +183,12 @@ ReportInput LoadReportInput(const RunFolder& run) {
     input.pr_curves = ReadPrCurves(run);
     input.ape_before = ApeSeries(state, state.odometry);
     input.ape_after = ApeSeries(state, state.corrected);
-    ReadMetrics(run, input);
+    input.metrics = ReadMetricsTable(metrics);
+    input.revisits = ReadRevisitFindings(metrics);
+    if (metrics.is_object() && metrics.contains("closure_truth")) {
+        input.true_closures = metrics["closure_truth"].value("true", 0);
+        input.false_closures = metrics["closure_truth"].value("false", 0);
+    }
     const auto maps = std::make_shared<std::vector<MapRecordSummary>>(state.maps);
     input.load_local_map = [run, maps](int id) -> std::optional<LocalMap> {
         if (id < 0 || id >= static_cast<int>(maps->size()) || !fs::exists(run.map_points(id))) return std::nullopt;

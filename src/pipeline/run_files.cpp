@@ -105,6 +105,41 @@ void WriteClosures(const RunFolder& run, const RunState& state) {
     WriteLines(run.closures_csv(), header, rows);
 }
 
+fs::path ComparisonsCsv(const RunFolder& run) { return run.root() / "comparisons.csv"; }
+
+void WriteComparisons(const RunFolder& run, const RunState& state) {
+    std::vector<std::string> rows;
+    for (const auto& c : state.comparisons) {
+        rows.push_back(CsvRow()
+                           .Add(c.query_id).Add(c.ref_id).Add(c.query_session).Add(c.ref_session)
+                           .Add(std::string(ComparisonStageName(c.stage))).Add(c.votes).Add(c.inliers)
+                           .Text());
+    }
+    WriteLines(ComparisonsCsv(run), {"query", "reference", "query_session", "ref_session", "stage", "votes", "inliers"}, rows);
+}
+
+/// Runs written before comparisons were recorded have no comparisons.csv: nothing to read.
+void ReadComparisons(const RunFolder& run, RunState& state) {
+    const fs::path file = ComparisonsCsv(run);
+    if (!fs::exists(file)) return;
+    const auto table = CsvTable::Read(file);
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        MapComparison c;
+        c.query_id = static_cast<int>(table.Integer(i, "query"));
+        c.ref_id = static_cast<int>(table.Integer(i, "reference"));
+        c.query_session = static_cast<int>(table.Integer(i, "query_session"));
+        c.ref_session = static_cast<int>(table.Integer(i, "ref_session"));
+        try {
+            c.stage = ComparisonStageFromName(table.Text(i, "stage"));
+        } catch (const ConfigError& e) {
+            throw DatasetError(file, e.what(), i + 2);
+        }
+        c.votes = static_cast<int>(table.Integer(i, "votes"));
+        c.inliers = static_cast<int>(table.Integer(i, "inliers"));
+        state.comparisons.push_back(c);
+    }
+}
+
 Trajectory WithTimes(const RunState& state, const Poses& poses) {
     Trajectory t;
     t.poses = poses;
@@ -154,6 +189,7 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
     if (state.has_reference()) WriteTumPoses(run.reference_tum(), WithTimes(state, state.reference));
     WriteMaps(run, state);
     WriteClosures(run, state);
+    WriteComparisons(run, state);
     json timings = json::object();
     for (const auto& [stage, timer] : state.timings) {
         timings[stage] = {{"total_ms", timer.total_ms}, {"count", timer.count},
@@ -231,6 +267,7 @@ RunState ReadRunState(const RunFolder& run) {
         if (fs::exists(detail)) ReadClosureDetail(detail, c);
         state.closures.push_back(std::move(r));
     }
+    ReadComparisons(run, state);
     const json timings = ReadJson(run.timings_json());
     for (const auto& [stage, value] : timings.items()) {
         state.timings[stage] = StageTimer{value.value("total_ms", 0.0), value.value("count", std::size_t{0})};

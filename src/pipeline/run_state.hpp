@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "closures/closure.hpp"
+#include "closures/detector.hpp"
 #include "core/trajectory.hpp"
 #include "optimization/refinement.hpp"
 
@@ -55,6 +56,7 @@ struct RunState {
     std::vector<int> map_of_scan;
     std::vector<MapRecordSummary> maps;
     std::vector<ClosureRecord> closures;
+    std::vector<MapComparison> comparisons;  ///< the density detector's skipped, voted-for and compared pairs
     std::map<std::string, StageTimer> timings;
     double wall_seconds = 0.0;
     std::size_t peak_rss_kb = 0;

@@ -9,6 +9,17 @@ namespace revisit {
 namespace {
 constexpr double kApeResolution = 0.01;         ///< [m] the summary prints APE in centimetres
 constexpr double kApeUnchangedFraction = 0.005;  ///< relative changes below this are noise
+
+/// Truth of the accepted closures, revisit coverage and where the missed revisits were lost.
+void PrintVerification(std::ostream& out, const RunEvaluation& e) {
+    out << "  accepted closures: " << e.truth.num_true << " true / " << e.truth.num_false << " false\n";
+    out << "  revisit coverage:  " << std::setprecision(0) << 100.0 * e.coverage.coverage << "% (" << e.coverage.covered_scans
+        << " of " << e.coverage.revisit_scans << " revisiting scans in a map joined by a true closure)\n";
+    out << "  overlapping map pairs: " << e.missed.overlapping_pairs << ", found " << e.missed.found_pairs;
+    for (const auto& [stage, count] : e.missed.per_stage) out << "; " << MissStageName(stage) << ": " << count;
+    out << '\n' << std::setprecision(1);
+}
+
 }  // namespace
 
 std::string DescribeApeChange(double before_m, double after_m) {
@@ -75,6 +86,7 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     const auto& after = evaluation->corrected.ape.errors.translation_stats;
     if (before.rmse > 0 || after.rmse > 0)
         out << "\n  APE translation RMSE: " << DescribeApeChange(before.rmse, after.rmse) << '\n';
+    PrintVerification(out, *evaluation);
 }
 
 }  // namespace revisit

@@ -66,6 +66,13 @@ struct TextTable {
     std::vector<std::vector<std::string>> rows;
 };
 
+/// "Were my revisits found?", from the evaluation (already formatted).
+struct RevisitFindings {
+    std::vector<std::string> lines;  ///< true / false counts, revisit coverage
+    TextTable per_stage;             ///< missed map pairs per stage
+    TextTable missed;                ///< one row per missed map pair
+};
+
 struct ReportInput {
     std::string title = "revisit report";
     std::vector<std::string> dataset_summary;  ///< one line each (path, format, scans, duration, length...)
@@ -90,6 +97,7 @@ struct ReportInput {
     ErrorSeries ape_before;  ///< odometry against reference
     ErrorSeries ape_after;   ///< corrected against reference
     TextTable metrics;       ///< from the evaluation, already formatted
+    std::optional<RevisitFindings> revisits;  ///< with reference poses only
 
     /// On-demand data (each may be empty: the pictures that need it are then left out).
     std::function<std::optional<LocalMap>(int map_id)> load_local_map;

@@ -7,6 +7,7 @@
 #include "report/map_page.hpp"
 #include "report/pair_page.hpp"
 #include "report/plots.hpp"
+#include "report/revisit_section.hpp"
 #include "report/svg_plot.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
@@ -210,6 +211,8 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     }
     if (input.metrics.rows.empty() && input.pr_curves.empty() && input.ape_after.values.empty())
         index.Paragraph("No evaluation in this run (no ground truth).");
+
+    AddRevisitSection(index, input);
 
     index.Heading("Closure pages", 2, "closures");
     index.Paragraph(std::to_string(plan.closure_pages.size()) + " of " + std::to_string(input.closures.size()) +

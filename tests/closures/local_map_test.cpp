@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "closures/density_image.hpp"
 #include "closures/features.hpp"
 #include "closures/ground_alignment.hpp"
@@ -54,6 +56,48 @@ TEST(LocalMapper, VoxelCapAndCarryOver) {
     bool carried = false;
     for (const auto& p : maps[1].points) carried |= p.x() < -4.f;
     EXPECT_TRUE(carried);
+}
+
+/// A 60 m walk around a 15 m square courtyard, back to its start, one pose every 0.5 m.
+std::vector<Eigen::Isometry3d> Courtyard() {
+    std::vector<Eigen::Isometry3d> poses;
+    const Eigen::Vector2d corners[] = {{0, 0}, {15, 0}, {15, 15}, {0, 15}, {0, 0}};
+    for (int side = 0; side < 4; ++side) {
+        const Eigen::Vector2d direction = (corners[side + 1] - corners[side]) / 15.0;
+        const double yaw = std::atan2(direction.y(), direction.x());
+        for (int k = 0; k < 30; ++k) {
+            const Eigen::Vector2d p = corners[side] + 0.5 * k * direction;
+            poses.push_back(PoseFromXYZRPY(p.x(), p.y(), 0.0, 0.0, 0.0, yaw));
+        }
+    }
+    poses.push_back(PoseFromXYZRPY(0.0, 0.0, 0.0, 0.0, 0.0, -M_PI / 2));
+    return poses;
+}
+
+TEST(LocalMapper, ExtentCapSplitsACourtyardLoopSoTheReturnMeetsTheStart) {
+    const auto poses = Courtyard();
+    const std::vector<std::vector<Eigen::Vector3f>> scans(poses.size(), {{1.f, 0.f, 0.f}});
+    LocalMapConfig config;  // paper split: 100 m of travel, more than the whole walk
+    ASSERT_EQ(BuildLocalMaps(scans, poses, config).size(), 1u);
+
+    config.max_extent = 10.0;
+    const auto maps = BuildLocalMaps(scans, poses, config);
+    ASSERT_GE(maps.size(), 4u);
+    for (const auto& map : maps) {
+        for (const auto& T_map_scan : map.T_map_scan) EXPECT_LE(T_map_scan.translation().norm(), 10.0 + 1e-9);
+    }
+    // The last map ends where the first began, and enough travel lies between them that a skip of
+    // recent maps by 40 m of travel (configs/handheld.yaml) still compares them.
+    const auto& first = maps.front();
+    const auto& last = maps.back();
+    EXPECT_EQ(last.last_scan, poses.size() - 1);
+    EXPECT_LT((last.T_world_map * last.T_map_scan.back()).translation().norm(), 1e-9);
+    EXPECT_GE(last.travel_start - first.travel_end, 40.0);
+
+    // The travel split still applies inside the cap: a straight 30 m walk with a 100 m cap and 10 m split.
+    config.max_extent = 100.0;
+    config.split_distance = 10.0;
+    EXPECT_EQ(BuildLocalMaps(std::vector<std::vector<Eigen::Vector3f>>(31, {{1.f, 0.f, 0.f}}), Line(31, 1.0), config).size(), 3u);
 }
 
 TEST(GroundAlignment, LevelsATiltedMap) {

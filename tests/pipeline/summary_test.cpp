@@ -18,6 +18,11 @@ std::string Summary(double ape_before, double ape_after, const PostRunSeconds& a
     RunEvaluation evaluation;
     evaluation.odometry.ape.errors.translation_stats.rmse = ape_before;
     evaluation.corrected.ape.errors.translation_stats.rmse = ape_after;
+    evaluation.truth.num_true = 1;
+    evaluation.coverage = {40, 31, 31.0 / 40.0};
+    evaluation.missed.overlapping_pairs = 3;
+    evaluation.missed.found_pairs = 1;
+    evaluation.missed.per_stage = {{MissStage::kTooFewInliers, 2}};
     std::ostringstream out;
     state.wall_seconds = 8.0;
     PrintRunSummary(out, state, evaluation, after_chain);
@@ -31,6 +36,10 @@ TEST(RunSummary, CountsClosuresByStageAndNamesTheApeChange) {
     EXPECT_NE(Summary(1.0, 0.2).find("1.00 m -> 0.20 m (80% lower)"), std::string::npos) << Summary(1.0, 0.2);
     EXPECT_NE(Summary(1.0, 1.5).find("(50% higher: the closures made it worse)"), std::string::npos) << Summary(1.0, 1.5);
     EXPECT_NE(Summary(1.0, 1.001).find("1.00 m -> 1.00 m (unchanged)"), std::string::npos) << Summary(1.0, 1.001);
+    EXPECT_NE(Summary(1.0, 0.2).find("accepted closures: 1 true / 0 false"), std::string::npos) << Summary(1.0, 0.2);
+    EXPECT_NE(Summary(1.0, 0.2).find("revisit coverage:  78% (31 of 40"), std::string::npos) << Summary(1.0, 0.2);
+    EXPECT_NE(Summary(1.0, 0.2).find("overlapping map pairs: 3, found 1; too few inliers: 2"), std::string::npos)
+        << Summary(1.0, 0.2);
 }
 
 TEST(RunSummary, ApeChangesBetweenValuesNearZeroAreUnchangedNotThousandsOfPercent) {

@@ -1,0 +1,79 @@
+#include "evaluation/closure_truth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <unordered_map>
+
+namespace revisit {
+
+ClosureTruth JudgeClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_world_reference,
+                           const ClosureTruthConfig& config) {
+    ClosureTruth truth;
+    for (const auto& c : closures) {
+        ClosureVerdict verdict;
+        verdict.error = ClosureErrorAgainst(T_world_reference, c.query_first_scan, c.ref_first_scan, c.T_query_ref);
+        verdict.is_true = verdict.error.translation <= config.true_translation && verdict.error.yaw_deg <= config.true_rotation_deg;
+        (verdict.is_true ? truth.num_true : truth.num_false)++;
+        truth.verdicts.push_back(verdict);
+    }
+    return truth;
+}
+
+std::vector<std::vector<std::size_t>> FindRevisits(const Poses& T_world_reference, double radius, double gap) {
+    const std::size_t n = T_world_reference.size();
+    std::vector<double> travel(n, 0.0);
+    for (std::size_t i = 1; i < n; ++i)
+        travel[i] = travel[i - 1] + (T_world_reference[i].translation() - T_world_reference[i - 1].translation()).norm();
+    // Planar grid of `radius` cells: a scan's neighbours within the radius are in the 3 x 3 cells around it.
+    auto cell_of = [&](std::size_t i) {
+        const Eigen::Vector3d p = T_world_reference[i].translation();
+        return std::make_pair(std::int64_t(std::floor(p.x() / radius)), std::int64_t(std::floor(p.y() / radius)));
+    };
+    auto key = [](std::int64_t x, std::int64_t y) { return (std::uint64_t(x) << 32) ^ (std::uint64_t(y) & 0xffffffffu); };
+    std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+    std::vector<std::vector<std::size_t>> revisits(n);
+    if (radius <= 0.0) return revisits;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto [cx, cy] = cell_of(i);
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+            for (std::int64_t dy = -1; dy <= 1; ++dy) {
+                const auto it = grid.find(key(cx + dx, cy + dy));
+                if (it == grid.end()) continue;
+                for (std::size_t e : it->second) {
+                    if (travel[i] - travel[e] < gap) continue;
+                    if ((T_world_reference[i].translation() - T_world_reference[e].translation()).norm() <= radius)
+                        revisits[i].push_back(e);
+                }
+            }
+        }
+        std::sort(revisits[i].begin(), revisits[i].end());
+        grid[key(cx, cy)].push_back(i);
+    }
+    return revisits;
+}
+
+RevisitCoverage ComputeRevisitCoverage(const Poses& T_world_reference, const std::vector<MapRange>& maps,
+                                       const std::vector<std::pair<std::size_t, std::size_t>>& true_map_pairs,
+                                       const ClosureTruthConfig& config) {
+    std::set<std::pair<std::size_t, std::size_t>> joined;
+    for (const auto& [a, b] : true_map_pairs) joined.insert(std::minmax(a, b));
+    const auto revisits = FindRevisits(T_world_reference, config.revisit_radius, config.revisit_gap);
+    RevisitCoverage coverage;
+    for (std::size_t s = 0; s < revisits.size(); ++s) {
+        if (revisits[s].empty()) continue;
+        ++coverage.revisit_scans;
+        const std::size_t map = MapIndexOfScan(maps, s);
+        bool covered = false;
+        for (std::size_t e : revisits[s]) {
+            const std::size_t other = MapIndexOfScan(maps, e);
+            covered = covered || (map < maps.size() && other < maps.size() && joined.count(std::minmax(map, other)) > 0);
+        }
+        coverage.covered_scans += covered ? 1 : 0;
+    }
+    if (coverage.revisit_scans > 0) coverage.coverage = double(coverage.covered_scans) / double(coverage.revisit_scans);
+    return coverage;
+}
+
+}  // namespace revisit

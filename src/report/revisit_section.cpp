@@ -1,0 +1,18 @@
+#include "report/revisit_section.hpp"
+
+namespace revisit {
+
+void AddRevisitSection(HtmlPage& index, const ReportInput& input) {
+    if (!input.revisits) return;
+    const RevisitFindings& findings = *input.revisits;
+    index.Heading("Were the revisits found?", 2, "revisits");
+    if (!findings.lines.empty()) index.List(findings.lines);
+    if (!findings.per_stage.rows.empty()) {
+        index.Paragraph("Map pairs that the reference poses say overlap but no true accepted closure joined, by the "
+                        "stage that lost them:");
+        index.Table(findings.per_stage.header, findings.per_stage.rows);
+    }
+    if (!findings.missed.rows.empty()) index.Table(findings.missed.header, findings.missed.rows);
+}
+
+}  // namespace revisit

@@ -1,0 +1,120 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/se3.hpp"
+#include "optimization/closure_consistency.hpp"
+
+namespace revisit {
+namespace {
+
+/// Two laps of a 400 m square drive, one node every 10 m (40 per lap), and an odometry that drifts
+/// as a real one does, differently on each lap (0.5% long then 0.3% short, 1e-4 rad of heading per
+/// metre left then 0.5e-4 right): inside the graph's odometry noise, and it does not cancel around a cycle.
+struct TwoLaps {
+    Poses truth, odometry;
+    std::vector<double> travel;
+
+    TwoLaps() {
+        Eigen::Isometry3d odom = Eigen::Isometry3d::Identity();
+        for (int k = 0; k < 80; ++k) {
+            const int side = (k % 40) / 10, step = k % 10;
+            const double yaw = side * M_PI / 2;
+            const Eigen::Vector2d corner[] = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+            const Eigen::Vector2d p = corner[side] + 10.0 * step * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+            truth.push_back(PoseFromXYZRPY(p.x(), p.y(), 0.0, 0.0, 0.0, yaw));
+            if (k > 0) {
+                Eigen::Isometry3d delta = truth[k - 1].inverse() * truth[k];
+                const bool first_lap = k < 40;
+                delta.translation() *= first_lap ? 1.005 : 0.997;
+                delta = delta * PoseFromXYZRPY(0, 0, 0, 0, 0, first_lap ? 1e-3 : -0.5e-3);
+                odom = odom * delta;
+            }
+            odometry.push_back(odom);
+            travel.push_back(10.0 * k);
+        }
+    }
+    ConsistencyOdometry Odometry() const { return {&odometry, &travel}; }
+    /// A true closure from node q (lap two) to node r (lap one), measured within a few centimetres.
+    ConsistencyClosure True(int q, int r) const {
+        return {q, r, PoseFromXYZRPY(0.03, -0.02, 0, 0, 0, 0.002) * truth[q].inverse() * truth[r], 50.0};
+    }
+};
+
+const Eigen::Isometry3d kWrong = PoseFromXYZRPY(6.0, -3.0, 0.0, 0.0, 0.0, 0.2);  // a repetitive facade, 6 m off
+
+std::vector<char> Evaluate(const TwoLaps& laps, const std::vector<ConsistencyClosure>& closures) {
+    ClosureConsistency consistency(ClosureConsistencyConfig{}, OdometryNoise{});
+    for (const auto& c : closures) consistency.Add(c, laps.Odometry());
+    return consistency.ConsistentSet();
+}
+
+TEST(ClosureConsistency, TrueClosuresAreConsistentAndAllKept) {
+    const TwoLaps laps;
+    std::vector<ConsistencyClosure> closures;
+    for (int r : {2, 9, 17, 25, 33, 38}) closures.push_back(laps.True(40 + r, r));
+    // The 40 m shifted closure (node 45 -> node 1, as seen from 4 nodes later) also holds.
+    closures.push_back(laps.True(45, 1));
+    const auto keep = Evaluate(laps, closures);
+    for (std::size_t k = 0; k < keep.size(); ++k) EXPECT_TRUE(keep[k]) << "closure " << k;
+    EXPECT_LT(CycleChi2(closures[0], closures[5], laps.Odometry(), OdometryNoise{}, ClosureConsistencyConfig{}), 16.81);
+}
+
+TEST(ClosureConsistency, OneWrongClosureAmongConsistentOnesIsDropped) {
+    const TwoLaps laps;
+    std::vector<ConsistencyClosure> closures;
+    for (int r : {3, 12, 21, 30}) closures.push_back(laps.True(40 + r, r));
+    auto wrong = laps.True(55, 15);
+    wrong.T_query_ref = wrong.T_query_ref * kWrong;
+    wrong.score = 500.0;  // more inliers than any true one: the inlier count alone cannot reject it
+    closures.insert(closures.begin() + 2, wrong);
+    const auto keep = Evaluate(laps, closures);
+    EXPECT_EQ(keep, (std::vector<char>{1, 1, 0, 1, 1}));
+}
+
+TEST(ClosureConsistency, TwoMutuallyConsistentWrongClosuresAgainstManyRightOnesAreDropped) {
+    const TwoLaps laps;
+    std::vector<ConsistencyClosure> closures;
+    for (int r : {1, 6, 11, 19, 27, 34}) closures.push_back(laps.True(40 + r, r));
+    // Two queries confuse the same place with another: they agree with each other (same reference,
+    // same error), not with the drive.
+    for (int q : {62, 63}) {
+        auto wrong = laps.True(q, 22);
+        wrong.T_query_ref = wrong.T_query_ref * kWrong;
+        closures.push_back(wrong);
+    }
+    ClosureConsistency consistency(ClosureConsistencyConfig{}, OdometryNoise{});
+    for (const auto& c : closures) consistency.Add(c, laps.Odometry());
+    EXPECT_TRUE(consistency.Consistent(6, 7));
+    EXPECT_FALSE(consistency.Consistent(3, 6));  // the true closure 59 -> 19, 30 m of travel away
+    EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 1, 1, 1, 1, 1, 0, 0}));
+}
+
+TEST(ClosureConsistency, ASingleClosureIsKeptAndDisablingKeepsAll) {
+    const TwoLaps laps;
+    auto wrong = laps.True(50, 10);
+    wrong.T_query_ref = wrong.T_query_ref * kWrong;
+    EXPECT_EQ(Evaluate(laps, {wrong}), std::vector<char>{1});
+
+    ClosureConsistencyConfig off;
+    off.enabled = false;
+    ClosureConsistency consistency(off, OdometryNoise{});
+    consistency.Add(laps.True(50, 10), laps.Odometry());
+    consistency.Add(wrong, laps.Odometry());
+    EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 1}));
+}
+
+TEST(MaximumClique, ExactOnSmallGraphsTiesByWeightAndDeterministic) {
+    // Two triangles {0,1,2} and {3,4,5} joined by edge 2-3; the second is heavier.
+    std::vector<std::vector<char>> adjacency(6, std::vector<char>(6, 0));
+    auto link = [&](int a, int b) { adjacency[a][b] = adjacency[b][a] = 1; };
+    link(0, 1), link(1, 2), link(0, 2), link(3, 4), link(4, 5), link(3, 5), link(2, 3);
+    EXPECT_EQ(MaximumClique(adjacency, {1, 1, 1, 2, 2, 2}, 1000), (std::vector<std::size_t>{3, 4, 5}));
+    EXPECT_EQ(MaximumClique(adjacency, {2, 2, 2, 1, 1, 1}, 1000), (std::vector<std::size_t>{0, 1, 2}));
+    // A 4-clique hidden behind a high-degree vertex that the greedy start picks first.
+    link(0, 4), link(1, 4), link(2, 4);
+    EXPECT_EQ(MaximumClique(adjacency, std::vector<double>(6, 1.0), 1000), (std::vector<std::size_t>{0, 1, 2, 4}));
+}
+
+}  // namespace
+}  // namespace revisit
