@@ -15,6 +15,7 @@ struct PlanarBeams {
     std::vector<float> ranges;     ///< [m] per beam in order of increasing angle; 0 = no return
     double aperture = 0.0;         ///< [rad] field of view used to place the beams
     double stated_aperture = 0.0;  ///< [rad] what the file says
+    Eigen::Isometry3d T_vehicle_sensor = Eigen::Isometry3d::Identity();  ///< where the laser sits
 };
 
 struct Scan {

@@ -127,6 +127,7 @@ std::optional<Scan> ScanFromObservation(const mrpt::obs::CObservation& obs, Read
     mrpt::poses::CPose3D sensor_pose;
     obs.getSensorPose(sensor_pose);
     const Eigen::Isometry3d T_vehicle_sensor = ToIsometry(sensor_pose);
+    if (scan->planar_beams) scan->planar_beams->T_vehicle_sensor = T_vehicle_sensor;
     if (!T_vehicle_sensor.isApprox(Eigen::Isometry3d::Identity(), 0.0)) {  // identity skipped: converted points stay bit-exact
         const Eigen::Isometry3f T = T_vehicle_sensor.cast<float>();
         for (auto& p : scan->points) p = T * p;

@@ -110,7 +110,7 @@ class RawlogWriter final : public DatasetWriter {
         auto obs = mrpt::obs::CObservation2DRangeScan::Create();
         obs->sensorLabel = scan.sensor_label.empty() ? "LASER" : scan.sensor_label;
         obs->timestamp = stamp;
-        obs->aperture = static_cast<float>(options_.planar_aperture);
+        obs->aperture = static_cast<float>(options_.planar_stated_aperture > 0.0 ? options_.planar_stated_aperture : options_.planar_aperture);
         obs->rightToLeft = true;
         obs->maxRange = static_cast<float>(options_.planar_max_range);
         const int beams = options_.planar_beams;

@@ -15,6 +15,9 @@ struct WriterOptions {
     int planar_beams = 360;
     double planar_aperture = 2.0 * 3.14159265358979323846;  ///< [rad]
     double planar_max_range = 30.0;                          ///< [m]
+    /// [rad] aperture stated in the file when it differs from the beams' (0: planar_aperture); tests of the
+    /// aperture check write files that lie, as the MRPT conversions of CARMEN logs do
+    double planar_stated_aperture = 0.0;
     bool write_odometry = true;  ///< rawlogs: CObservationOdometry before each scan that has T_odom_sensor
 };
 

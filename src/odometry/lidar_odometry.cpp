@@ -2,6 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -140,26 +142,33 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         // the result more points agree with (within one voxel of the map).
         Eigen::Isometry3d delta_translation = delta;
         delta_translation.linear().setIdentity();
+        std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel) : 0;
         if (config_.turn_hypothesis && !poses_.empty() &&
             ModelError(delta_translation.inverse() * delta, config_.ThresholdRange()) > voxel) {
             const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
-            if (alternative.valid && alternative.T_world_sensor.matrix().allFinite() &&
-                CountAgreeing(source, alternative.T_world_sensor, voxel) > CountAgreeing(source, icp.T_world_sensor, voxel)) {
+            const std::size_t alternative_agreeing =
+                alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel) : 0;
+            if (alternative_agreeing > agreeing) {
                 icp = alternative;
+                agreeing = alternative_agreeing;
                 stats_.turn_hypothesis_used = true;
             }
         }
+        stats_.agreement = source.empty() ? 0.0 : static_cast<double>(agreeing) / static_cast<double>(source.size());
         stats_.iterations = icp.iterations;
         stats_.correspondences = icp.correspondences;
         // A correction is judged by its translation: the rotation part of the model error grows with
         // max_range, and a swaying handheld sensor turns 15 deg between keyframes legitimately.
         const double correction = (T_predicted.inverse() * icp.T_world_sensor).translation().norm();
-        stats_.inlier_ratio = source.empty() ? 0.0 : static_cast<double>(icp.correspondences) / static_cast<double>(source.size());
+        if (std::getenv("REVISIT_DEBUG_ODOMETRY")) std::fprintf(stderr, "DBG %zu agree %.3f\n", scan.index, stats_.agreement);
         if (!icp.valid) {
             problem = "only " + std::to_string(icp.correspondences) + " correspondences within " +
                       Describe(params.max_correspondence_distance) + " m of the map";
         } else if (!icp.T_world_sensor.matrix().allFinite() || !(correction <= config_.max_correction)) {
             problem = "ICP diverged (correction of " + Describe(correction) + " m)";
+        } else if (stats_.agreement < config_.min_agreement) {
+            problem = "only " + Describe(100.0 * stats_.agreement) + "% of the points lie within a voxel of the map after ICP (minimum " +
+                      Describe(100.0 * config_.min_agreement) + "%): not the scene the map shows";
         } else if (config_.max_correction_factor > 0.0 && correction > CorrectionLimit()) {
             problem = "ICP jumped " + Describe(correction) + " m from the motion prediction (limit " + Describe(CorrectionLimit()) +
                       " m: " + Describe(config_.max_correction_factor) + " x the RMS of earlier corrections)";

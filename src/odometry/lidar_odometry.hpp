@@ -22,7 +22,7 @@ struct OdometryFrameStats {
     std::size_t map_points = 0;          ///< after the 0.5 v downsampling (what enters the map)
     std::size_t source_points = 0;       ///< after the 1.5 v downsampling (what is registered)
     std::size_t correspondences = 0;     ///< in the last ICP iteration
-    double inlier_ratio = 0.0;           ///< correspondences / source points
+    double agreement = 0.0;              ///< share of the registered points within one voxel of the map
     int iterations = 0;
     double sigma = 0.0;                  ///< [m] adaptive threshold used for this frame
     bool prior_used = false;             ///< the prediction came from Scan::T_odom_sensor

@@ -32,6 +32,9 @@ struct OdometryConfig {
     /// A frame whose translation correction exceeds this many times the RMS correction of the earlier
     /// frames (at least one map voxel) jumped to a wrong minimum: it keeps the prediction. 0 = off.
     double max_correction_factor = 8.0;
+    /// A registered frame needs this share of its points within one map voxel of the map; fewer: the
+    /// scan does not show the mapped scene (sensor fault, garbage) and keeps the prediction. 0 = off.
+    double min_agreement = 0.1;
     // Motion model and inputs.
     /// Also register from the translation-only prediction when the predicted turn moves points by more
     /// than a voxel, keeping the better result (swaying handheld sensors; 2 ICPs on those frames).

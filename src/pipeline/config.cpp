@@ -29,6 +29,8 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.max_correction", &o.max_correction, "m", "ICP result this far (translation) from the prediction is deemed diverged", Range{0.01, 1000});
     s.Add("odometry.max_correction_factor", &o.max_correction_factor, "",
           "a correction above this x the RMS of earlier corrections (>= one voxel) is a jump: the frame keeps the prediction; 0 = off", Range{0, 1000});
+    s.Add("odometry.min_agreement", &o.min_agreement, "",
+          "share of a scan's points within a voxel of the map after ICP; fewer: the frame keeps the prediction (garbage, faults)", Range{0, 1});
     s.Add("odometry.turn_hypothesis", &o.turn_hypothesis, "",
           "when the predicted turn moves points by more than a voxel, also register without it and keep the better (swaying sensors)");
     s.Add("odometry.deskew", &o.deskew, "", "constant-velocity motion compensation (paper-era: off)");

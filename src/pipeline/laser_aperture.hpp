@@ -1,9 +1,10 @@
 #pragma once
 /// Checks a 2D laser's stated field of view against the data. Converted logs can state a wrong
 /// aperture (the radish CARMEN logs converted by MRPT say 90 deg for 180 beams over 180 deg), which
-/// bends every scan and makes scan matching worse than wheel odometry. When the robot turns on the
-/// spot, the range profile shifts by (turn / true beam step) beams; the wheel odometry's turn over
-/// the shift measured in the data gives the true step, whatever the file says.
+/// bends every scan and makes scan matching worse than wheel odometry. When the robot turns, a scan's
+/// features move by the turn in true angles but by turn / k in the stated ones (k = true / stated
+/// aperture): placing the later scan's beams with each candidate k, moving them by the wheel
+/// odometry and comparing with the earlier scan's ranges finds k, whatever the file says.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -16,9 +17,12 @@ namespace revisit {
 struct ApertureCheckConfig {
     double min_turn_deg = 8.0;         ///< [deg] turns smaller than this shift too few beams to measure
     double max_turn_deg = 45.0;        ///< [deg] larger turns leave too little overlap
-    double max_translation = 0.3;      ///< [m] pairs that also move are not pure turns
+    double max_translation = 1.0;      ///< [m] longer moves leave little overlap indoors
     std::size_t window = 15;           ///< earlier scans a scan is paired with
     std::size_t wanted_pairs = 40;     ///< stop collecting after this many measured turns
+    double min_scale = 0.25;           ///< smallest true / stated aperture ratio searched
+    double max_scale = 4.0;            ///< largest
+    double scale_step = 0.005;         ///< relative step of the search
     std::size_t min_pairs = 8;         ///< fewer: no verdict
     double tolerance = 0.1;            ///< stated aperture kept when the ratio is within 1 +- this
 };
@@ -27,7 +31,7 @@ struct ApertureEstimate {
     int beams = 0;
     double stated_deg = 0.0;     ///< [deg] what the file says
     double used_deg = 0.0;       ///< [deg] what the points were built with
-    double measured_deg = 0.0;   ///< [deg] from the turns (snapped to 5 deg when within 2.5%)
+    double measured_deg = 0.0;   ///< [deg] from the turns (ratio snapped to a multiple of 1/2 within 5%)
     double ratio = 1.0;          ///< measured / used (median over the pairs)
     double ratio_spread = 0.0;   ///< median absolute deviation of the ratio
     std::size_t pairs = 0;       ///< turns measured
@@ -47,7 +51,7 @@ class ApertureChecker {
 
   private:
     struct Past {
-        std::vector<float> ranges;
+        PlanarBeams beams;
         Eigen::Isometry3d T_odom_sensor;
     };
     ApertureCheckConfig config_;
@@ -57,9 +61,10 @@ class ApertureChecker {
     double stated_ = 0.0, used_ = 0.0;
 };
 
-/// The shift s [beams, sub-beam] that best maps `later` onto `earlier` (later[i] ~ earlier[i + s]),
-/// searched over |s| <= max_shift with a robust mean absolute range difference; nullopt when the
-/// overlap is too small. Exposed for tests.
-std::optional<double> ProfileShift(const std::vector<float>& earlier, const std::vector<float>& later, int max_shift);
+/// The aperture scale k (true / used) under which `later`, moved by `T_earlier_later` (laser frames),
+/// best matches `earlier`: the k of least mean clipped range difference over a log grid; nullopt
+/// when too few beams overlap. Exposed for tests.
+std::optional<double> ApertureScale(const PlanarBeams& earlier, const PlanarBeams& later, const Eigen::Isometry3d& T_earlier_later,
+                                    const ApertureCheckConfig& config);
 
 }  // namespace revisit

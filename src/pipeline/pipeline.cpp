@@ -23,6 +23,7 @@
 namespace revisit {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+constexpr std::size_t kShownFallbacks = 10;  ///< odometry fallbacks shown one by one; all are in run.json
 
 std::size_t PeakRssKb() {
     rusage usage{};
@@ -142,7 +143,6 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     Progress progress(log, Progress::DetectMode(options.quiet), total);
     InstallInterruptHandler();
     bool reference_complete = true;
-    std::size_t degenerate_frames = 0;
     std::map<std::string, StageTimer> timings;
     const auto time = [&timings](const char* stage, Clock::time_point start) {
         auto& t = timings[stage];
@@ -163,7 +163,10 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         if (odometry) {
             T_world_sensor = odometry->RegisterScan(*scan);
             points = ToFloat(odometry->LastDeskewedPoints());
-            degenerate_frames += odometry->LastStats().degenerate;
+            if (odometry->LastStats().degenerate) {
+                state.odometry_fallbacks.push_back(position);
+                if (state.odometry_fallbacks.size() <= kShownFallbacks) progress.Message("warning: " + odometry->LastStats().warning);
+            }
             time("odometry", odometry_start);
         } else if (options.poses == PoseSource::kDataset) {
             if (!scan->T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan->index) +
@@ -211,7 +214,11 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
     state.peak_rss_kb = PeakRssKb();
     WriteRunState(run, state);
-    if (degenerate_frames > 0) log << "warning: " << degenerate_frames << " scans gave no usable registration (pose predicted)\n";
+    if (!state.odometry_fallbacks.empty()) {
+        log << "warning: the odometry fell back to the motion prediction on " << state.odometry_fallbacks.size() << " of "
+            << state.odometry.size() << " scans" << (state.odometry_fallbacks.size() > kShownFallbacks ? " (the first shown above)" : "")
+            << "; run.json lists them\n";
+    }
     const std::string drops = DescribeDrops(reader->Stats());
     if (!drops.empty()) log << "note: " << drops << '\n';
     if (!state.complete) log << "interrupted: wrote the " << state.odometry.size() << " scans processed so far (run.json: complete = false)\n";

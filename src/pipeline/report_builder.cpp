@@ -143,6 +143,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
         if (stage.find('.') == std::string::npos) input.timings.push_back({stage, timer.total_ms / 1000.0});
     }
     input.odometry = Timed(state, state.odometry);
+    input.odometry_fallbacks = state.odometry_fallbacks;
     input.corrected = Timed(state, state.corrected);
     if (state.has_reference()) {
         // Ground truth lives in its own world frame: show it where the APE alignment puts it, so the

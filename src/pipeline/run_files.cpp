@@ -200,7 +200,8 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
                                {"complete", state.complete}, {"scans", state.odometry.size()},
                                {"maps", state.maps.size()}, {"closures", state.closures.size()},
                                {"accepted_closures", state.NumAccepted()}, {"wall_seconds", state.wall_seconds},
-                               {"peak_rss_kb", state.peak_rss_kb}, {"revisit_version", "0.1.0"}});
+                               {"peak_rss_kb", state.peak_rss_kb}, {"odometry_fallbacks", state.odometry_fallbacks},
+                               {"revisit_version", "0.1.0"}});
 }
 
 RunState ReadRunState(const RunFolder& run) {
@@ -213,6 +214,7 @@ RunState ReadRunState(const RunFolder& run) {
         state.complete = info.at("complete").get<bool>();
         state.wall_seconds = info.value("wall_seconds", 0.0);
         state.peak_rss_kb = info.value("peak_rss_kb", std::size_t{0});
+        state.odometry_fallbacks = info.value("odometry_fallbacks", std::vector<std::size_t>{});
     } catch (const json::exception& e) {
         throw DatasetError(run.run_info(), std::string("malformed run info: ") + e.what());
     }

@@ -54,6 +54,9 @@ struct RunState {
     Poses corrected;           ///< per scan, after the pose graph
     Poses reference;           ///< per scan, or empty when the dataset has no reference
     std::vector<int> map_of_scan;
+    /// Scans (positions in `odometry`) whose pose is only the motion prediction: the odometry found the
+    /// scan degenerate or its registration diverged (issue 14: divergence is reported, never hidden).
+    std::vector<std::size_t> odometry_fallbacks;
     std::vector<MapRecordSummary> maps;
     std::vector<ClosureRecord> closures;
     std::vector<MapComparison> comparisons;  ///< the density detector's skipped, voted-for and compared pairs

@@ -56,7 +56,13 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
         << (state.wall_seconds > 0 ? state.odometry.size() / state.wall_seconds : 0.0) << " scans/s)";
     if (after_chain.evaluation) out << ", evaluation " << *after_chain.evaluation << " s";
     if (after_chain.report) out << ", report " << *after_chain.report << " s";
-    out << "; peak memory of the chain " << state.peak_rss_kb / 1024 << " MiB\n\n";
+    out << "; peak memory of the chain " << state.peak_rss_kb / 1024 << " MiB\n";
+    if (!state.odometry_fallbacks.empty()) {
+        out << "  odometry          DIVERGED or degenerate on " << state.odometry_fallbacks.size() << " of " << state.odometry.size()
+            << " scans (first at scan " << state.odometry_fallbacks.front()
+            << "): their poses are motion predictions, marked in the report\n";
+    }
+    out << '\n';
     out << "  stage                           total [s]    mean [ms]    calls\n";
     for (const auto& [stage, timer] : state.timings) {
         if (timer.count == 0) continue;

@@ -57,6 +57,16 @@ std::string TrajectoryApeSvg(const TimedTrajectory& trajectory, const ErrorSerie
     return ColoredPathSvg("Corrected trajectory coloured by APE", xy, values, "APE [m]");
 }
 
+std::string OdometryFallbacksSvg(const TimedTrajectory& odometry, const std::vector<std::size_t>& fallbacks) {
+    std::vector<std::pair<double, double>> xy;
+    std::vector<double> values(odometry.T_world_sensor.size(), 0.0);
+    for (const auto& T : odometry.T_world_sensor) xy.emplace_back(T.translation().x(), T.translation().y());
+    for (const std::size_t i : fallbacks) {
+        if (i < values.size()) values[i] = 1.0;
+    }
+    return ColoredPathSvg("Odometry trajectory: motion predictions (no registration) at 1", xy, values, "fallback");
+}
+
 std::string TimingSvg(const std::vector<StageTiming>& timings) {
     std::vector<std::pair<std::string, double>> bars;
     for (const auto& t : timings) bars.emplace_back(t.stage, t.seconds);

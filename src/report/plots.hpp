@@ -16,6 +16,10 @@ std::string ApeOverTimeSvg(const ErrorSeries& before, const ErrorSeries& after);
 /// Top view of the corrected trajectory, each segment coloured by its APE (matched by nearest timestamp).
 std::string TrajectoryApeSvg(const TimedTrajectory& trajectory, const ErrorSeries& ape);
 
+/// Top view of the odometry trajectory; scans whose pose is only the motion prediction (degenerate or
+/// diverged registration, RunState::odometry_fallbacks) in red.
+std::string OdometryFallbacksSvg(const TimedTrajectory& odometry, const std::vector<std::size_t>& fallbacks);
+
 /// Seconds per pipeline stage.
 std::string TimingSvg(const std::vector<StageTiming>& timings);
 

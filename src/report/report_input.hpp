@@ -83,6 +83,7 @@ struct ReportInput {
     TimedTrajectory odometry;
     TimedTrajectory corrected;
     TimedTrajectory reference;  ///< ground truth, empty when unknown
+    std::vector<std::size_t> odometry_fallbacks;  ///< scans whose odometry pose is only a prediction
 
     std::vector<ClosureEntry> closures;
     std::vector<int> map_ids;  ///< the run's local maps

@@ -246,6 +246,15 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     index.Raw(maps + "</div>\n");
     AddMapTable(index, input, plan);
 
+    if (!input.odometry_fallbacks.empty()) {
+        index.Heading("Odometry fallbacks", 2, "odometry");
+        WriteText(report_dir / "odometry_fallbacks.svg", OdometryFallbacksSvg(input.odometry, input.odometry_fallbacks));
+        ++stats.images;
+        index.Paragraph("The odometry fell back to the motion prediction on " + std::to_string(input.odometry_fallbacks.size()) +
+                        " scans (degenerate or diverged registration; run.json lists them). They are red here:");
+        index.Figure("odometry_fallbacks.svg", "odometry trajectory, motion predictions in red");
+    }
+
     index.Heading("Time per stage", 2, "timing");
     if (input.timings.empty()) index.Paragraph("Not recorded.");
     if (!input.timings.empty()) {

@@ -1,0 +1,126 @@
+/// Issue 14: settings derived from the data. Different worlds give different, documented settings;
+/// explicit values win; a 2D laser's wrong stated aperture is measured and corrected.
+#include <gtest/gtest.h>
+
+#include "io/reader.hpp"
+#include "io/writer.hpp"
+#include "pipeline/auto_settings.hpp"
+#include "sim/presets.hpp"
+#include "sim/simulate.hpp"
+#include "test_data.hpp"
+
+namespace revisit {
+namespace {
+namespace fs = std::filesystem;
+
+/// The first `scans` scans of a simulator preset, written to `out` (a KITTI folder or a rawlog).
+fs::path Simulate(const std::string& preset, std::size_t scans, const fs::path& out) {
+    SimConfig config = SimPreset(preset);
+    config.max_scans = scans;
+    RunSimulation(config, out, true);
+    return out;
+}
+
+double Chosen(const AutoSettings& settings, const std::string& key) {
+    for (const auto& c : settings.choices) {
+        if (c.key == key) return c.value;
+    }
+    ADD_FAILURE() << "no choice for " << key;
+    return -1.0;
+}
+
+std::string DescribeAll(std::initializer_list<const AutoSettings*> settings) {
+    std::string text;
+    for (const auto* s : settings) {
+        for (const auto& line : s->profile.Describe()) text += line + "\n";
+        for (const auto& line : s->Describe()) text += line + "\n";
+    }
+    return text;
+}
+
+TEST(AutoSettings, AWalkACityDriveAndAnIndoorLaserGetDifferentDocumentedSettings) {
+    test::TempDir dir;
+    PipelineConfig walk, city, indoor;
+    const auto walk_settings = ConfigureFromData(walk, Simulate("campus-handheld", 12, dir / "walk"));
+    const auto city_settings = ConfigureFromData(city, Simulate("tiny", 12, dir / "city"));
+    const auto indoor_settings = ConfigureFromData(indoor, Simulate("indoor-2d-180", 12, dir / "indoor.rawlog"));
+
+    // The indoor laser is planar with centimetre voxels; the walk's scene is smaller than the city's.
+    EXPECT_TRUE(indoor.odometry.planar);
+    EXPECT_FALSE(city.odometry.planar);
+    EXPECT_FALSE(walk.odometry.planar);
+    EXPECT_LT(indoor.odometry.voxel_size, walk.odometry.voxel_size);
+    EXPECT_LT(walk.odometry.voxel_size, city.odometry.voxel_size) << DescribeAll({&walk_settings, &city_settings});
+    EXPECT_LT(indoor.odometry.max_range, city.odometry.max_range);
+    EXPECT_LT(walk.odometry.min_range, 5.0);  // the paper-era 5 m would drop the walk's near scene
+    // What was applied is what was chosen, and each choice says why.
+    for (const auto* s : {&walk_settings, &city_settings, &indoor_settings}) {
+        ASSERT_FALSE(s->choices.empty());
+        for (const auto& c : s->choices) {
+            EXPECT_TRUE(c.applied) << c.key;
+            EXPECT_FALSE(c.reason.empty()) << c.key;
+        }
+    }
+    EXPECT_DOUBLE_EQ(city.odometry.voxel_size, Chosen(city_settings, "odometry.voxel_size"));
+    EXPECT_DOUBLE_EQ(city.odometry.initial_threshold, 2.0 * city.odometry.voxel_size);
+    EXPECT_NE(DumpConfig(walk), DumpConfig(city));
+}
+
+TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
+    test::TempDir dir;
+    const fs::path data = Simulate("indoor-2d-180", 12, dir / "indoor.rawlog");
+    PipelineConfig config = LoadConfig({}, {"odometry.voxel_size=0.7", "odometry.max_range=100"});
+    const auto settings = ConfigureFromData(config, data);
+    EXPECT_DOUBLE_EQ(config.odometry.voxel_size, 0.7);
+    EXPECT_DOUBLE_EQ(config.odometry.max_range, 100.0);
+    EXPECT_TRUE(config.odometry.planar);  // not given: still derived
+    bool warned_range = false;
+    for (const auto& w : settings.warnings) warned_range = warned_range || w.find("odometry.max_range = 100") != std::string::npos;
+    EXPECT_TRUE(warned_range) << "a 100 m range on a scene within a few metres is worth a warning";
+    for (const auto& c : settings.choices) {
+        if (c.key == "odometry.voxel_size") {
+            EXPECT_FALSE(c.applied);
+        }
+    }
+    // Off: nothing derived.
+    PipelineConfig off = LoadConfig({}, {"input.auto_settings=false"});
+    EXPECT_TRUE(ConfigureFromData(off, data).choices.empty());
+    EXPECT_FALSE(off.odometry.planar);
+}
+
+/// Rewrites a simulated 2D rawlog stating `stated_deg` for its 180-degree beams.
+fs::path WithStatedAperture(const fs::path& source, double stated_deg, const fs::path& out) {
+    auto reader = OpenDataset(source);
+    WriterOptions options;
+    options.planar_as_range_scan = true;
+    options.planar_beams = 361;
+    options.planar_aperture = M_PI;
+    options.planar_stated_aperture = stated_deg * M_PI / 180.0;
+    auto writer = CreateRawlogWriter(out, options, true);
+    while (auto scan = reader->Next()) writer->Write(*scan);
+    writer->Finish();
+    return out;
+}
+
+TEST(ApertureCheck, AStatedApertureTheTurnsContradictIsCorrectedWithAWarningAndARightOneIsKept) {
+    test::TempDir dir;
+    const fs::path truth = Simulate("indoor-2d-180", 1500, dir / "indoor.rawlog");
+
+    PipelineConfig wrong;
+    const auto corrected = ConfigureFromData(wrong, WithStatedAperture(truth, 90.0, dir / "wrong.rawlog"));
+    ASSERT_TRUE(corrected.aperture) << "no turns on the spot found";
+    EXPECT_TRUE(corrected.aperture->contradicts) << corrected.aperture->Describe();
+    EXPECT_NEAR(wrong.input.laser_aperture_deg, 180.0, 1e-9) << corrected.aperture->Describe();
+    ASSERT_FALSE(corrected.warnings.empty());
+    EXPECT_NE(corrected.warnings.back().find("aperture corrected from 90 to 180 deg"), std::string::npos) << corrected.warnings.back();
+
+    PipelineConfig right;
+    const auto kept = ConfigureFromData(right, truth);
+    ASSERT_TRUE(kept.aperture);
+    EXPECT_FALSE(kept.aperture->contradicts) << kept.aperture->Describe();
+    EXPECT_EQ(right.input.laser_aperture_deg, 0.0);
+    EXPECT_TRUE(kept.warnings.empty());
+}
+
+}  // namespace
+}  // namespace revisit
