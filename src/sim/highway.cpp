@@ -19,6 +19,10 @@ World GenerateHighway(const HighwayConfig& config, std::uint64_t seed) {
     world.ground.amplitude = config.ground_amplitude;
     world.ground.wavelength = 900.0;
     world.lane_offset = 0.5 * config.road_half_width;
+    world.ground.relief = config.ground_relief;
+    world.ground.roughness = config.ground_roughness;
+    world.ground.seed = seed * 0x9E3779B97F4A7C15ULL + 0xBB67AE85ULL;
+    world.foliage_free_path = config.foliage_free_path;
     // A wobbly ring (sum of low harmonics), four ring nodes joined by two cross roads through a centre node.
     const double a2 = Uniform(rng, -1.0, 1.0), a3 = Uniform(rng, -1.0, 1.0), p2 = Uniform(rng, 0, 2 * kPi),
                  p3 = Uniform(rng, 0, 2 * kPi);

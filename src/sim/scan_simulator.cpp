@@ -61,10 +61,10 @@ Scan SimulateScan(const RayCaster& caster, const SensorConfig& sensor, const std
             const Eigen::Vector3d direction = T_world_ray.linear() * ray.direction;
             const double time_in_world = sweep.timestamp - period + ray.time;
             const RayHit hit = caster.Cast(origin, direction, sensor.min_range, sensor.max_range, time_in_world,
-                                           sweep.dynamic_boxes);
+                                           sweep.dynamic_boxes, SplitMix64(random.state));
             if (!hit.hit()) continue;
             const double sigma = sensor.range_noise + sensor.range_noise_quadratic * hit.range * hit.range;
-            const double range = hit.range + sigma * random.Normal();
+            const double range = hit.range + ray.range_offset + sigma * random.Normal();
             if (range < sensor.min_range || range > sensor.max_range) continue;
             // Raw measurement: in the sensor frame at the ray's own time (what deskewing undoes).
             Eigen::Vector3d point = ray.direction * range;

@@ -87,7 +87,7 @@ SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, cons
     summary.primitives = plan.world.NumPrimitives();
     summary.revisits = plan.revisits.size();
     for (const auto& r : plan.revisits) summary.opposite_revisits += r.opposite ? 1 : 0;
-    const bool fixed_pattern = config.sensor.type != SensorType::kRosette;
+    const bool fixed_pattern = config.sensor.type != SensorType::kRosette && !config.sensor.azimuth_jitter;
     std::vector<SensorRay> rays;
     if (fixed_pattern) rays = MakeRays(config.sensor, 0);
     tbb::task_group writing;
