@@ -24,7 +24,8 @@ fs::path CacheFolder(const std::string& preset, std::uint64_t seed) {
     const char* xdg = std::getenv("XDG_CACHE_HOME");
     const char* home = std::getenv("HOME");
     const fs::path base = xdg && *xdg ? fs::path(xdg) : home && *home ? fs::path(home) / ".cache" : fs::temp_directory_path();
-    return base / "revisit" / ("sim-" + preset + "-seed" + std::to_string(seed));
+    // "v2": the worlds of issue 15 (rough ground, foliage, clutter, sensor residuals); an older cache is not reused.
+    return base / "revisit" / ("sim-v2-" + preset + "-seed" + std::to_string(seed));
 }
 
 int RunDemo(const DemoOptions& o) {
@@ -43,7 +44,7 @@ int RunDemo(const DemoOptions& o) {
     } else {
         std::cerr << "revisit demo: using the cached sequence " << data.string() << '\n';
     }
-    const PipelineConfig config = ResolveConfigFor(o.config, data, std::cerr);
+    const PipelineConfig config = ResolveConfig(o.config);
     RunOptions run_options;
     run_options.dataset = data;
     run_options.quiet = o.quiet;

@@ -20,7 +20,7 @@ struct OdometryOptions {
 };
 
 int RunOdometry(const OdometryOptions& o) {
-    const PipelineConfig config = ResolveConfigFor(o.config, o.dataset, std::cerr);
+    const PipelineConfig config = ResolveConfig(o.config);
     const auto threads = LimitThreads(o.config.threads);
     const ReaderOptions reader_options = MakeReaderOptions(config.input);
     auto reader = OpenDataset(o.dataset, reader_options);

@@ -19,7 +19,7 @@ struct RunCommandOptions {
 };
 
 int RunRun(RunCommandOptions& o) {
-    const auto config = ResolveConfigFor(o.config, o.run.dataset, std::cerr);
+    const auto config = ResolveConfig(o.config);
     const auto threads = LimitThreads(o.config.threads);
     if (o.poses == "odometry") o.run.poses = PoseSource::kOdometry;
     else if (o.poses == "dataset") o.run.poses = PoseSource::kDataset;

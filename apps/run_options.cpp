@@ -26,16 +26,6 @@ PipelineConfig ResolveConfig(const ConfigOptions& options) {
     return LoadConfig(files, options.overrides);
 }
 
-PipelineConfig ResolveConfigFor(const ConfigOptions& options, const fs::path& dataset, std::ostream& log) {
-    const bool simulated = fs::exists(dataset / "sim.yaml") || fs::exists(fs::path(dataset.string() + ".sim.yaml"));
-    if (!simulated || !options.configs.empty()) return ResolveConfig(options);
-    log << "revisit: " << dataset.string() << " was written by `revisit simulate`: using --config sim "
-        << "(0.5 m odometry voxels); pass --config to choose another\n";
-    ConfigOptions with_sim = options;
-    with_sim.configs.push_back("sim");
-    return ResolveConfig(with_sim);
-}
-
 std::unique_ptr<tbb::global_control> LimitThreads(int threads) {
     if (threads <= 0) return nullptr;
     return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);

@@ -138,9 +138,35 @@ World GenerateAroundTrajectory(const Poses& poses, const AroundTrajectoryConfig&
     auto accept = [&](std::size_t b, std::size_t c, std::size_t s) {
         return Clear(world, b, c, s, near_route, config.near_clearance + 1.0);
     };
-    for (int side = -1; side <= 1; side += 2)
+    for (int side = -1; side <= 1; side += 2) {
         AddRoadsideClutter(route, 0.0, length, -side * (config.parking_offset + 1.5),
                            -side * (config.clearance + city.sidewalk), city.bush_spacing, clutter_rng, world, accept);
+        // Kerbs at the road edge and, along the property line, garden walls, fences and hedges in pieces.
+        const auto kerb_line = OffsetPolyline(route, -side * (config.parking_offset + 1.2));
+        const auto property_line = OffsetPolyline(route, -side * (config.clearance + city.sidewalk));
+        for (double s = 0.0; s < length; s += 8.0) {
+            const std::size_t b = world.boxes.size(), c = world.cylinders.size(), e = world.spheres.size();
+            AddWall(PolylinePoint(kerb_line, s), PolylinePoint(kerb_line, std::min(s + 8.0, length)), 0.25, -0.3, 0.15,
+                    Material::kWall, world);
+            if (!accept(b, c, e)) world.boxes.resize(b);
+        }
+        for (double s = 0.0; s < length;) {
+            const double piece = Uniform(clutter_rng, 6.0, 24.0);
+            const double kind = Uniform(clutter_rng, 0.0, 1.0);
+            const double height = Uniform(clutter_rng, 0.8, 1.8);
+            for (double u = s; u < std::min(s + piece, length) && kind < city.fence_probability; u += 4.0) {
+                const std::size_t b = world.boxes.size(), c = world.cylinders.size(), e = world.spheres.size();
+                const Eigen::Vector2d a = PolylinePoint(property_line, u);
+                const Eigen::Vector2d z = PolylinePoint(property_line, std::min({u + 4.0, s + piece, length}));
+                if (kind < 0.5 * city.fence_probability)
+                    AddWall(a, z, 0.15, -0.3, height, Material::kWall, world);
+                else
+                    AddHedge(a, z, clutter_rng, world);
+                if (!accept(b, c, e)) world.boxes.resize(b), world.spheres.resize(e);
+            }
+            s += piece;
+        }
+    }
     return world;
 }
 

@@ -75,7 +75,7 @@ World GenerateIndoor(const IndoorConfig& config, std::uint64_t seed);
 /// furniture along them but never within `clearance` [m] of the route. The street graph is the route.
 struct AroundTrajectoryConfig {
     CityConfig city;                   ///< densities and sizes reused from the city generator
-    double clearance = 7.0;            ///< [m] from the route to buildings, lamps and trees
+    double clearance = 6.0;            ///< [m] from the route to buildings, lamps and trees
     double near_clearance = 2.6;       ///< [m] from the route to parked cars (clutter: 1 m more)
     double parking_offset = 3.8;       ///< [m] from the route to the centre line of parked cars
     double sample_spacing = 5.0;       ///< [m] route resampling

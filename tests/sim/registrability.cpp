@@ -91,8 +91,13 @@ ScanStatistics DescribeScans(const ProbeSequence& sequence) {
             key = static_cast<long long>(std::floor(p.x() / cell)) * 100003LL + static_cast<long long>(std::floor(p.y() / cell));
             return true;
         };
-        for (const auto& [key, points] : Bin(scan, 1.0, ground_key))
-            if (points.size() >= 6) roughness.push_back(std::sqrt(std::max(Shape(points).eigenvalues()[0], 0.0)));
+        for (const auto& [key, points] : Bin(scan, 1.0, ground_key)) {
+            if (points.size() < 6) continue;
+            const auto shape = Shape(points);
+            // Two or more rings in the cell: a patch of surface, not a single ring's line.
+            if (shape.eigenvalues()[1] < 0.02) continue;
+            roughness.push_back(std::sqrt(std::max(shape.eigenvalues()[0], 0.0)));
+        }
         for (const auto& [key, points] : Bin(scan, 4.0, ground_key)) {
             if (points.size() < 20) continue;
             const auto shape = Shape(points);
