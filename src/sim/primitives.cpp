@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/counter_random.hpp"
+
 namespace revisit {
 namespace {
 
@@ -12,12 +14,10 @@ constexpr double kTwoPi = 6.283185307179586;
 /// Smooth value noise in [-1, 1]: random values on a unit lattice, blended with a smoothstep.
 double ValueNoise(double x, double y, std::uint64_t seed) {
     auto lattice = [seed](std::int64_t i, std::int64_t j) {
-        std::uint64_t key = seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL) ^
-                            (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4FULL);
-        key = (key ^ (key >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        key = (key ^ (key >> 27)) * 0x94D049BB133111EBULL;
-        key ^= key >> 31;
-        return static_cast<double>(key >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+        // Offset by SplitMix64's increment: the lattice values of the worlds measured in src/sim/README.md.
+        const std::uint64_t key = seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL) ^
+                                  (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4FULL);
+        return 2.0 * UnitFromKey(key - 0x9E3779B97F4A7C15ULL) - 1.0;
     };
     const double fx = std::floor(x), fy = std::floor(y);
     const auto i = static_cast<std::int64_t>(fx), j = static_cast<std::int64_t>(fy);

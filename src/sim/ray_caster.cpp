@@ -3,19 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/counter_random.hpp"
+
 namespace revisit {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Uniform in (0, 1] from a key (counter-based, like the scan simulator's draws).
-double UnitDraw(std::uint64_t key) {
-    key += 0x9E3779B97F4A7C15ULL;
-    key = (key ^ (key >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    key = (key ^ (key >> 27)) * 0x94D049BB133111EBULL;
-    key ^= key >> 31;
-    return (static_cast<double>(key >> 11) + 1.0) * (1.0 / 9007199254740992.0);
-}
+double UnitDraw(std::uint64_t key) { return UnitFromKey(key) + 1.0 / 9007199254740992.0; }
 
 /// A foliage volume: the return comes from an exponentially distributed depth after entering the
 /// sphere (mean `free_path`), or the ray passes through when that depth is beyond the exit.

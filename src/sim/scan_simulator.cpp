@@ -7,16 +7,10 @@
 #include <cmath>
 
 #include "core/se3.hpp"
+#include "sim/counter_random.hpp"
 
 namespace revisit {
 namespace {
-
-std::uint64_t SplitMix64(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ULL;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-    return x ^ (x >> 31);
-}
 
 /// Counter-based random numbers for one ray.
 struct RayRandom {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "sim/counter_random.hpp"
+
 namespace revisit {
 namespace {
 
@@ -14,13 +16,7 @@ Eigen::Vector3d FromAngles(double azimuth, double elevation) {
 }
 
 /// Deterministic draw in [-1, 1) from a key (counter-based: no state shared between beams or sweeps).
-double Signed(std::uint64_t key) {
-    key += 0x9E3779B97F4A7C15ULL;
-    key = (key ^ (key >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    key = (key ^ (key >> 27)) * 0x94D049BB133111EBULL;
-    key ^= key >> 31;
-    return static_cast<double>(key >> 11) * (2.0 / 9007199254740992.0) - 1.0;
-}
+double Signed(std::uint64_t key) { return 2.0 * UnitFromKey(key) - 1.0; }
 
 /// Approximately normal (sum of three uniforms, variance 1) for beam `beam`, quantity `what`.
 double BeamNormal(std::size_t beam, std::uint64_t what) {

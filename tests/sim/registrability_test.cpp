@@ -59,6 +59,8 @@ SimConfig Plain(SimConfig config) {
     AroundTrajectoryConfig& around = config.around;
     around.city.ground_relief = around.city.ground_roughness = around.city.foliage_free_path = 0.0;
     around.city.bush_spacing = 0.0;
+    around.clearance = 7.0;
+    around.city.fence_probability = 0.0;
     around.parking_offset = around.clearance + 1.2;
     around.near_clearance = around.clearance;
     return config;
