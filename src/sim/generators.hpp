@@ -52,6 +52,8 @@ struct HighwayConfig {
     double ground_relief = 0.06;       ///< [m] metre-scale relief amplitude
     double ground_roughness = 0.02;    ///< [m] centimetre-scale roughness amplitude
     double foliage_free_path = 0.8;    ///< [m] rays penetrate crowns (0: solid)
+    double bush_spacing = 6.0;         ///< [m] mean gap between verge clutter items (bushes, hedges, posts) per side (0: none)
+    double rail_post_spacing = 2.0;    ///< [m] guard rail posts (0: none)
     int moving_cars = 15;
 };
 

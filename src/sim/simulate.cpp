@@ -160,7 +160,9 @@ std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
     if (config.world == WorldKind::kHighway)
         out << "surfaces: {ground_relief: " << config.highway.ground_relief
             << ", ground_roughness: " << config.highway.ground_roughness
-            << ", foliage_free_path: " << config.highway.foliage_free_path << "}\n";
+            << ", foliage_free_path: " << config.highway.foliage_free_path
+            << ", bush_spacing: " << config.highway.bush_spacing << ", rail_post_spacing: " << config.highway.rail_post_spacing
+            << "}\n";
     out << "route: {length: " << config.route.length << ", revisits: " << config.route.revisits
         << ", opposite_fraction: " << config.route.opposite_fraction << ", min_revisit_gap: " << config.route.min_revisit_gap
         << "}\n"
