@@ -24,7 +24,8 @@ fs::path CacheFolder(const std::string& preset, std::uint64_t seed) {
     const char* xdg = std::getenv("XDG_CACHE_HOME");
     const char* home = std::getenv("HOME");
     const fs::path base = xdg && *xdg ? fs::path(xdg) : home && *home ? fs::path(home) / ".cache" : fs::temp_directory_path();
-    return base / "revisit" / ("sim-" + preset + "-seed" + std::to_string(seed));
+    // "v2": the worlds of issue 15 (rough ground, foliage, clutter, sensor residuals); an older cache is not reused.
+    return base / "revisit" / ("sim-v2-" + preset + "-seed" + std::to_string(seed));
 }
 
 int RunDemo(const DemoOptions& o) {

@@ -28,14 +28,7 @@ PipelineConfig ResolveConfig(const ConfigOptions& options) {
 }
 
 PipelineConfig ResolveConfigFor(const ConfigOptions& options, const fs::path& dataset, std::ostream& log) {
-    const bool simulated = fs::exists(dataset / "sim.yaml") || fs::exists(fs::path(dataset.string() + ".sim.yaml"));
-    ConfigOptions resolved = options;
-    if (simulated && options.configs.empty()) {
-        log << "revisit: " << dataset.string() << " was written by `revisit simulate`: using --config sim "
-            << "(0.5 m odometry voxels); pass --config to choose another\n";
-        resolved.configs.push_back("sim");
-    }
-    PipelineConfig config = ResolveConfig(resolved);
+    PipelineConfig config = ResolveConfig(options);
     const AutoSettings settings = ConfigureFromData(config, dataset);
     PrintAutoSettings(log, settings, dataset);
     config.derived = settings.Describe();

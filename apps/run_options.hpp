@@ -25,9 +25,8 @@ void AddConfigOptions(CLI::App& cmd, ConfigOptions& options);
 /// A name without a slash or .yaml is a preset from the configs/ folder.
 PipelineConfig ResolveConfig(const ConfigOptions& options);
 
-/// ResolveConfig for one dataset: a sequence written by `revisit simulate` (sim.yaml beside its scans, or
-/// <file>.sim.yaml beside a rawlog) gets the `sim` preset when no --config was given, with a note on `log`:
-/// with the default 1 m odometry voxels ICP stalls on the simulated worlds' perfectly flat ground.
+/// ResolveConfig, then every setting no --config/--set gave derived from the dataset's first scans
+/// (src/pipeline/auto_settings.hpp), printed with the reasons on `log` and kept for config.yaml.
 PipelineConfig ResolveConfigFor(const ConfigOptions& options, const std::filesystem::path& dataset, std::ostream& log);
 
 /// Limits TBB (and so Ceres) to `threads` workers for the lifetime of the returned object.

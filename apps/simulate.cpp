@@ -13,6 +13,7 @@ struct SimulateOptions {
     std::string out;
     std::uint64_t seed = 0;
     std::size_t max_scans = 0;
+    std::string trajectory;
     bool force = false;
     bool quiet = false;
     bool list = false;
@@ -27,6 +28,12 @@ int RunSimulate(const SimulateOptions& options) {
     SimConfig config = SimPreset(options.preset);
     if (options.seed != 0) config.seed = options.seed;
     if (options.max_scans != 0) config.max_scans = options.max_scans;
+    if (!options.trajectory.empty()) {
+        // A street world built along the given route, with the preset's sensor and city densities.
+        config.world = WorldKind::kAroundTrajectory;
+        config.trajectory_file = options.trajectory;
+        config.around.city = config.city;
+    }
     std::optional<Progress> progress;
     const auto summary = RunSimulation(config, options.out, options.force, [&](std::size_t done, std::size_t total) {
         if (!progress) progress.emplace(std::cerr, Progress::DetectMode(options.quiet), total);
@@ -51,11 +58,16 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
         "Examples:\n"
         "  revisit simulate --preset demo --out data/demo\n"
         "  revisit simulate --preset indoor-2d-360 --out indoor.rawlog.gz --seed 7\n"
+        "  revisit simulate --preset city-64 --trajectory ../shared/data/kitti_gt_poses/00.txt --out sim00\n"
         "  revisit simulate --list-presets");
     cmd->add_option("--preset", options->preset, "world + sensor preset (see --list-presets)")->capture_default_str();
     cmd->add_option("--out", options->out, "output KITTI folder or .rawlog[.gz] file");
     cmd->add_option("--seed", options->seed, "random seed (default: the preset's)");
     cmd->add_option("--scans", options->max_scans, "stop after this many scans (default: the whole route)");
+    cmd->add_option("--trajectory", options->trajectory,
+                    "drive this KITTI/TUM trajectory through a street world built along it (the preset gives the "
+                    "sensor and densities)")
+        ->check(CLI::ExistingFile);
     cmd->add_flag("--force", options->force, "write into an existing non-empty folder / overwrite a file");
     cmd->add_flag("--quiet", options->quiet, "no progress output");
     cmd->add_flag("--list-presets", options->list, "print the preset names and exit");

@@ -63,6 +63,10 @@ World GenerateAroundTrajectory(const Poses& poses, const AroundTrajectoryConfig&
     World world;
     world.kind = "around_trajectory";
     world.lane_offset = 0.0;
+    world.ground.relief = config.city.ground_relief;
+    world.ground.roughness = config.city.ground_roughness;
+    world.ground.seed = seed * 0x9E3779B97F4A7C15ULL + 0x3C6EF372ULL;
+    world.foliage_free_path = config.city.foliage_free_path;
     if (poses.size() < 2) return world;
     // The ground plane holds the two directions of largest spread; the third is "up".
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -87,10 +91,10 @@ World GenerateAroundTrajectory(const Poses& poses, const AroundTrajectoryConfig&
 
     // Walk along the route and try to place objects on both sides; anything too close is taken back.
     const double length = PolylineLength(route);
-    auto place = [&](auto&& add) {
+    auto place = [&](auto&& add, double clearance) {
         const std::size_t b = world.boxes.size(), c = world.cylinders.size(), s = world.spheres.size();
         add();
-        if (!Clear(world, b, c, s, near_route, config.clearance)) {
+        if (!Clear(world, b, c, s, near_route, clearance)) {
             world.boxes.resize(b);
             world.cylinders.resize(c);
             world.spheres.resize(s);
@@ -109,23 +113,58 @@ World GenerateAroundTrajectory(const Poses& poses, const AroundTrajectoryConfig&
             spec.width = width;
             spec.depth = Uniform(rng, 8.0, 20.0);
             spec.height = Uniform(rng, city.min_building_height, city.max_building_height);
-            place([&] { AddBuilding(spec, rng, world); });
+            place([&] { AddBuilding(spec, rng, world); }, config.clearance);
             s += width + (Uniform(rng, 0, 1) < 0.4 ? 0.0 : Uniform(rng, 2.0, 12.0));
         }
         for (double s = Uniform(rng, 0, 10); s < length; s += Uniform(rng, city.lamp_spacing_min, city.lamp_spacing_max)) {
             const Eigen::Vector2d p = PolylinePoint(route, s, &tangent);
             const Eigen::Vector2d away = side * Eigen::Vector2d(-tangent.y(), tangent.x());
-            place([&] { AddLamp(p + away * (config.clearance + 0.5), -away, rng, world); });
+            place([&] { AddLamp(p + away * (config.clearance + 0.5), -away, rng, world); }, config.clearance);
         }
         for (double s = Uniform(rng, 0, 10); s < length; s += Uniform(rng, 8.0, 20.0)) {
             const Eigen::Vector2d p = PolylinePoint(route, s, &tangent);
             const Eigen::Vector2d away = side * Eigen::Vector2d(-tangent.y(), tangent.x());
             if (Uniform(rng, 0, 1) < city.tree_street_fraction)
-                place([&] { AddTree(p + away * (config.clearance + 3.5), rng, world); });
+                place([&] { AddTree(p + away * (config.clearance + 3.5), rng, world); }, config.clearance);
             else if (Uniform(rng, 0, 1) < city.parked_car_density)
                 place([&] {
-                    AddParkedCar(p + away * (config.clearance + 1.2), std::atan2(tangent.y(), tangent.x()), -1e9f, 1e9f, world);
-                });
+                    AddParkedCar(p + away * config.parking_offset, std::atan2(tangent.y(), tangent.x()), -1e9f, 1e9f, world);
+                }, config.near_clearance);
+        }
+    }
+    // Roadside clutter between the parked cars and the buildings, with its own draws (the layout above
+    // stays as it was): real streets are lined with bushes, hedges and posts (src/sim/README.md).
+    std::mt19937 clutter_rng(static_cast<std::uint32_t>(seed * 40503u + 101u));
+    auto accept = [&](std::size_t b, std::size_t c, std::size_t s) {
+        return Clear(world, b, c, s, near_route, config.near_clearance + 1.0);
+    };
+    for (int side = -1; side <= 1; side += 2) {
+        AddRoadsideClutter(route, 0.0, length, -side * (config.parking_offset + 1.5),
+                           -side * (config.clearance + city.sidewalk), city.bush_spacing, clutter_rng, world, accept);
+        // Kerbs at the road edge and, along the property line, garden walls, fences and hedges in pieces.
+        const auto kerb_line = OffsetPolyline(route, -side * (config.parking_offset + 1.2));
+        const auto property_line = OffsetPolyline(route, -side * (config.clearance + city.sidewalk));
+        for (double s = 0.0; s < length; s += 8.0) {
+            const std::size_t b = world.boxes.size(), c = world.cylinders.size(), e = world.spheres.size();
+            AddWall(PolylinePoint(kerb_line, s), PolylinePoint(kerb_line, std::min(s + 8.0, length)), 0.25, -0.3, 0.15,
+                    Material::kWall, world);
+            if (!accept(b, c, e)) world.boxes.resize(b);
+        }
+        for (double s = 0.0; s < length;) {
+            const double piece = Uniform(clutter_rng, 6.0, 24.0);
+            const double kind = Uniform(clutter_rng, 0.0, 1.0);
+            const double height = Uniform(clutter_rng, 0.8, 1.8);
+            for (double u = s; u < std::min(s + piece, length) && kind < city.fence_probability; u += 4.0) {
+                const std::size_t b = world.boxes.size(), c = world.cylinders.size(), e = world.spheres.size();
+                const Eigen::Vector2d a = PolylinePoint(property_line, u);
+                const Eigen::Vector2d z = PolylinePoint(property_line, std::min({u + 4.0, s + piece, length}));
+                if (kind < 0.5 * city.fence_probability)
+                    AddWall(a, z, 0.15, -0.3, height, Material::kWall, world);
+                else
+                    AddHedge(a, z, clutter_rng, world);
+                if (!accept(b, c, e)) world.boxes.resize(b), world.spheres.resize(e);
+            }
+            s += piece;
         }
     }
     return world;

@@ -38,7 +38,7 @@ bool Connected(const StreetGraph& graph, const std::vector<bool>& removed) {
 
 /// Lamps, trees, parked cars, kerbs and moving cars along one street (METHOD-independent scenery).
 void FurnishStreet(const StreetGraph::Edge& edge, const CityConfig& config, const std::vector<double>& ring,
-                   std::mt19937& rng, World& world) {
+                   std::mt19937& rng, std::mt19937& clutter_rng, World& world) {
     const double length = edge.length;
     // Keep junctions (and roundabout rings) free: furniture starts `clear_a` from node a, ends `clear_b` before b.
     const double clear = config.road_half_width + config.sidewalk;
@@ -77,6 +77,9 @@ void FurnishStreet(const StreetGraph::Edge& edge, const CityConfig& config, cons
             }
             AddParkedCar(center, std::atan2(tangent.y(), tangent.x()), from, until, world);
         }
+        // Own draws: the clutter does not move anything placed above.
+        AddRoadsideClutter(edge.polyline, clear_a, length - clear_b, side * (config.road_half_width + 0.7),
+                           side * (config.road_half_width + config.sidewalk + 1.5), config.bush_spacing, clutter_rng, world);
     }
     for (std::size_t i = 1; i < edge.polyline.size(); ++i)
         world.roads.push_back({edge.polyline[i - 1], edge.polyline[i], config.road_half_width});
@@ -171,6 +174,10 @@ World GenerateCity(const CityConfig& config, std::uint64_t seed) {
     world.ground.amplitude = config.ground_amplitude;
     world.ground.wavelength = Uniform(rng, 250.0, 450.0);
     world.lane_offset = 0.5 * config.road_half_width - 0.5;
+    world.ground.relief = config.ground_relief;
+    world.ground.roughness = config.ground_roughness;
+    world.ground.seed = seed * 0x9E3779B97F4A7C15ULL + 0x6A09E667ULL;  // not from rng: the layout stays as it was
+    world.foliage_free_path = config.foliage_free_path;
 
     const int nx = config.blocks_x + 1;
     const int ny = config.blocks_y + 1;
@@ -251,7 +258,8 @@ World GenerateCity(const CityConfig& config, std::uint64_t seed) {
     ClearStreets(world.streets, buildings_first, config.road_half_width + 1.0, world);
     for (const auto& n : world.streets.nodes) world.roads.push_back({n, n, config.road_half_width * 1.3});
 
-    for (const auto& edge : world.streets.edges) FurnishStreet(edge, config, ring, rng, world);
+    std::mt19937 clutter_rng(static_cast<std::uint32_t>(seed * 40503u + 101u));
+    for (const auto& edge : world.streets.edges) FurnishStreet(edge, config, ring, rng, clutter_rng, world);
 
     AddMovingCars(config.moving_cars, 5.0, 12.0, rng, world);
     return world;

@@ -32,6 +32,12 @@ struct CityConfig {
     double fence_probability = 0.5;    ///< gaps between buildings closed by a fence or wall
     double ground_slope = 0.01;        ///< [m per m] overall tilt
     double ground_amplitude = 1.5;     ///< [m] undulation
+    // What makes real streets registrable (issue 15, src/sim/README.md): none of it is needed for the
+    // pictures, all of it for scan-to-map ICP to behave as on real scans.
+    double ground_relief = 0.06;       ///< [m] metre-scale relief amplitude (slope varies every few metres)
+    double ground_roughness = 0.02;    ///< [m] centimetre-scale roughness amplitude
+    double foliage_free_path = 0.8;    ///< [m] rays penetrate crowns and bushes (0: solid spheres)
+    double bush_spacing = 5.0;         ///< [m] mean gap between roadside clutter items (bushes, hedges, signs, bollards, bins) per street side (0: none)
 };
 
 /// Long roads with sparse structure: a ring road with two cross roads, guard rails, lamps, signs, trees.
@@ -43,6 +49,11 @@ struct HighwayConfig {
     double sign_spacing = 400.0;       ///< [m]
     double tree_probability = 0.15;    ///< per 25 m of road side
     double ground_amplitude = 3.0;     ///< [m]
+    double ground_relief = 0.06;       ///< [m] metre-scale relief amplitude
+    double ground_roughness = 0.02;    ///< [m] centimetre-scale roughness amplitude
+    double foliage_free_path = 0.8;    ///< [m] rays penetrate crowns (0: solid)
+    double bush_spacing = 6.0;         ///< [m] mean gap between verge clutter items (bushes, hedges, posts) per side (0: none)
+    double rail_post_spacing = 2.0;    ///< [m] guard rail posts (0: none)
     int moving_cars = 15;
 };
 
@@ -66,7 +77,9 @@ World GenerateIndoor(const IndoorConfig& config, std::uint64_t seed);
 /// furniture along them but never within `clearance` [m] of the route. The street graph is the route.
 struct AroundTrajectoryConfig {
     CityConfig city;                   ///< densities and sizes reused from the city generator
-    double clearance = 7.0;            ///< [m] from the route to any object
+    double clearance = 6.0;            ///< [m] from the route to buildings, lamps and trees
+    double near_clearance = 2.6;       ///< [m] from the route to parked cars (clutter: 1 m more)
+    double parking_offset = 3.8;       ///< [m] from the route to the centre line of parked cars
     double sample_spacing = 5.0;       ///< [m] route resampling
 };
 World GenerateAroundTrajectory(const Poses& poses, const AroundTrajectoryConfig& config, std::uint64_t seed);

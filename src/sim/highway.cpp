@@ -19,6 +19,10 @@ World GenerateHighway(const HighwayConfig& config, std::uint64_t seed) {
     world.ground.amplitude = config.ground_amplitude;
     world.ground.wavelength = 900.0;
     world.lane_offset = 0.5 * config.road_half_width;
+    world.ground.relief = config.ground_relief;
+    world.ground.roughness = config.ground_roughness;
+    world.ground.seed = seed * 0x9E3779B97F4A7C15ULL + 0xBB67AE85ULL;
+    world.foliage_free_path = config.foliage_free_path;
     // A wobbly ring (sum of low harmonics), four ring nodes joined by two cross roads through a centre node.
     const double a2 = Uniform(rng, -1.0, 1.0), a3 = Uniform(rng, -1.0, 1.0), p2 = Uniform(rng, 0, 2 * kPi),
                  p3 = Uniform(rng, 0, 2 * kPi);
@@ -39,6 +43,7 @@ World GenerateHighway(const HighwayConfig& config, std::uint64_t seed) {
     }
     for (int k = 0; k < ring_nodes; k += 2) graph.AddEdge(k, centre);
 
+    std::mt19937 clutter_rng(static_cast<std::uint32_t>(seed * 40503u + 202u));
     for (const auto& edge : graph.edges) {
         const double length = edge.length;
         const double clear = 40.0;  // junctions stay open
@@ -68,6 +73,15 @@ World GenerateHighway(const HighwayConfig& config, std::uint64_t seed) {
                 if (Uniform(rng, 0, 1) < config.tree_probability)
                     AddTree(PolylinePoint(OffsetPolyline(edge.polyline, side * (config.road_half_width + Uniform(rng, 6, 20))), s),
                             rng, world);
+            // Own draws (the layout above stays): the guard rail's posts, and bushes, hedges and posts on
+            // the verge; a rail alone is the same all along the road, which leaves the motion along it free.
+            for (double s = clear; s + 1.0 < length - clear && config.rail_post_spacing > 0.0; s += config.rail_post_spacing) {
+                const Eigen::Vector2d post = PolylinePoint(rail, s);
+                const double g = world.ground.Height(post.x(), post.y());
+                world.cylinders.push_back({post, 0.06, g - 0.3, g + 0.7, Material::kMetal});
+            }
+            AddRoadsideClutter(edge.polyline, clear, length - clear, side * (config.road_half_width + 2.0),
+                               side * (config.road_half_width + 14.0), config.bush_spacing, clutter_rng, world);
         }
         for (std::size_t i = 1; i < edge.polyline.size(); ++i)
             world.roads.push_back({edge.polyline[i - 1], edge.polyline[i], config.road_half_width});

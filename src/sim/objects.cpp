@@ -105,6 +105,75 @@ void AddTree(const Eigen::Vector2d& base, std::mt19937& rng, World& world) {
                                  0.7 * crown, Material::kVegetation});
 }
 
+void AddBush(const Eigen::Vector2d& base, std::mt19937& rng, World& world) {
+    const double ground = world.ground.Height(base.x(), base.y());
+    const int parts = std::uniform_int_distribution<int>(2, 3)(rng);
+    for (int i = 0; i < parts; ++i) {
+        const double r = Uniform(rng, 0.4, 1.0);
+        world.spheres.push_back({Eigen::Vector3d(base.x() + Uniform(rng, -0.6, 0.6), base.y() + Uniform(rng, -0.6, 0.6),
+                                                 ground + Uniform(rng, 0.1, 0.7) * r + 0.2),
+                                 r, Material::kVegetation});
+    }
+}
+
+void AddHedge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, std::mt19937& rng, World& world) {
+    const double length = (b - a).norm();
+    const double height = Uniform(rng, 1.0, 2.2);
+    for (double s = 0.0; s <= length; s += Uniform(rng, 0.6, 1.0)) {
+        const Eigen::Vector2d p = a + (b - a) * (s / std::max(length, 1e-9));
+        const double ground = world.ground.Height(p.x(), p.y());
+        const double r = 0.5 * height * Uniform(rng, 0.8, 1.1);
+        world.spheres.push_back({Eigen::Vector3d(p.x(), p.y(), ground + height - r), r, Material::kVegetation});
+    }
+}
+
+void AddSmallFurniture(const Eigen::Vector2d& base, const Eigen::Vector2d& along, std::mt19937& rng, World& world) {
+    const double ground = world.ground.Height(base.x(), base.y());
+    const double kind = Uniform(rng, 0.0, 1.0);
+    if (kind < 0.5) {  // sign post with a panel facing the road
+        const double height = Uniform(rng, 2.0, 3.2);
+        world.cylinders.push_back({base, 0.04, ground - 0.3, ground + height, Material::kMetal});
+        AddStandingBox(base, Yaw(along), Eigen::Vector2d(Uniform(rng, 0.25, 0.6), 0.03), height - 0.7, height,
+                       Material::kMetal, world);
+    } else if (kind < 0.8) {  // bollard
+        world.cylinders.push_back({base, Uniform(rng, 0.08, 0.15), ground - 0.3, ground + Uniform(rng, 0.6, 1.1),
+                                   Material::kMetal});
+    } else {  // bin, electrical box
+        AddStandingBox(base, Yaw(along), Eigen::Vector2d(Uniform(rng, 0.3, 0.6), Uniform(rng, 0.3, 0.5)), -0.2,
+                       Uniform(rng, 0.9, 1.5), Material::kFurniture, world);
+    }
+}
+
+void AddRoadsideClutter(const std::vector<Eigen::Vector2d>& line, double s0, double s1, double near, double far,
+                        double spacing, std::mt19937& rng, World& world,
+                        const std::function<bool(std::size_t, std::size_t, std::size_t)>& accept) {
+    if (spacing <= 0.0) return;
+    Eigen::Vector2d tangent;
+    for (double s = s0 + Uniform(rng, 0.0, spacing); s < s1; s += Uniform(rng, 0.3, 1.7) * spacing) {
+        const Eigen::Vector2d p = PolylinePoint(line, s, &tangent);
+        const Eigen::Vector2d right(tangent.y(), -tangent.x());
+        const double offset = Uniform(rng, std::min(near, far), std::max(near, far));
+        const Eigen::Vector2d base = p + right * offset;
+        const std::size_t b = world.boxes.size(), c = world.cylinders.size(), e = world.spheres.size();
+        const double kind = Uniform(rng, 0.0, 1.0);
+        if (kind < 0.45) {
+            AddBush(base, rng, world);
+        } else if (kind < 0.65) {
+            const double length = std::min(Uniform(rng, 4.0, 12.0), s1 - s);
+            const Eigen::Vector2d end = PolylinePoint(line, s + length, &tangent);
+            AddHedge(base, end + Eigen::Vector2d(tangent.y(), -tangent.x()) * offset, rng, world);
+            s += length;
+        } else {
+            AddSmallFurniture(base, tangent, rng, world);
+        }
+        if (accept && !accept(b, c, e)) {
+            world.boxes.resize(b);
+            world.cylinders.resize(c);
+            world.spheres.resize(e);
+        }
+    }
+}
+
 void AddParkedCar(const Eigen::Vector2d& center, double yaw, float from, float until, World& world) {
     const double ground = world.ground.Height(center.x(), center.y());
     OrientedBox body;

@@ -2,7 +2,9 @@
 /// Street furniture and buildings as unions of primitives, standing on the world's ground.
 /// Shared by the city, highway, indoor and around-trajectory generators.
 #include <Eigen/Core>
+#include <functional>
 #include <random>
+#include <vector>
 
 #include "sim/world.hpp"
 
@@ -26,6 +28,18 @@ void AddBuilding(const BuildingSpec& spec, std::mt19937& rng, World& world);
 void AddLamp(const Eigen::Vector2d& base, const Eigen::Vector2d& towards_road, std::mt19937& rng, World& world);
 /// Trunk plus one or two crown spheres.
 void AddTree(const Eigen::Vector2d& base, std::mt19937& rng, World& world);
+/// A bush: two or three overlapping foliage spheres low over the ground (rays scatter in them).
+void AddBush(const Eigen::Vector2d& base, std::mt19937& rng, World& world);
+/// A hedge from a to b: foliage spheres every ~0.8 m, 1-2 m high.
+void AddHedge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, std::mt19937& rng, World& world);
+/// A sign post, bollard or bin: the small, scattered vertical structure of a real roadside.
+void AddSmallFurniture(const Eigen::Vector2d& base, const Eigen::Vector2d& along, std::mt19937& rng, World& world);
+/// Roadside clutter along one side of `line` (arc length s0..s1): bushes, hedges, signs, bollards and
+/// bins between `near` and `far` [m] to the right (negative: left) of it, one every `spacing` [m] on
+/// average. `accept` may veto a placement (returns false to take it back).
+void AddRoadsideClutter(const std::vector<Eigen::Vector2d>& line, double s0, double s1, double near, double far,
+                        double spacing, std::mt19937& rng, World& world,
+                        const std::function<bool(std::size_t, std::size_t, std::size_t)>& accept = {});
 /// `count` cars driving the lanes of random street edges at speeds in [min_speed, max_speed] [m/s].
 void AddMovingCars(int count, double min_speed, double max_speed, std::mt19937& rng, World& world);
 /// Parked car box; present only between `from` and `until` [s].

@@ -3,11 +3,29 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/counter_random.hpp"
+
 namespace revisit {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTwoPi = 6.283185307179586;
+
+/// Smooth value noise in [-1, 1]: random values on a unit lattice, blended with a smoothstep.
+double ValueNoise(double x, double y, std::uint64_t seed) {
+    auto lattice = [seed](std::int64_t i, std::int64_t j) {
+        // Offset by SplitMix64's increment: the lattice values of the worlds measured in src/sim/README.md.
+        const std::uint64_t key = seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL) ^
+                                  (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4FULL);
+        return 2.0 * UnitFromKey(key - 0x9E3779B97F4A7C15ULL) - 1.0;
+    };
+    const double fx = std::floor(x), fy = std::floor(y);
+    const auto i = static_cast<std::int64_t>(fx), j = static_cast<std::int64_t>(fy);
+    double u = x - fx, v = y - fy;
+    u = u * u * (3.0 - 2.0 * u);
+    v = v * v * (3.0 - 2.0 * v);
+    return (lattice(i, j) * (1 - u) + lattice(i + 1, j) * u) * (1 - v) + (lattice(i, j + 1) * (1 - u) + lattice(i + 1, j + 1) * u) * v;
+}
 
 }  // namespace
 
@@ -28,13 +46,31 @@ float Reflectivity(Material material) {
 
 double Ground::Height(double x, double y) const {
     const double k = kTwoPi / wavelength;
-    return base_height + slope_x * x + slope_y * y + amplitude * std::sin(k * x) * std::cos(k * 0.7 * y);
+    double h = base_height + slope_x * x + slope_y * y + amplitude * std::sin(k * x) * std::cos(k * 0.7 * y);
+    if (relief > 0.0) h += relief * ValueNoise(x / relief_wavelength, y / relief_wavelength, seed);
+    return h;
+}
+
+double Ground::Roughness(double x, double y) const {
+    if (roughness <= 0.0) return 0.0;
+    // Two octaves: pebbles and cracks on top of a gentler waviness.
+    const double s = 1.0 / roughness_wavelength;
+    return roughness * (0.65 * ValueNoise(x * s, y * s, seed ^ 0x5151) + 0.35 * ValueNoise(2.7 * x * s, 2.7 * y * s, seed ^ 0x7373));
 }
 
 Eigen::Vector2d Ground::Gradient(double x, double y) const {
     const double k = kTwoPi / wavelength;
-    return {slope_x + amplitude * k * std::cos(k * x) * std::cos(k * 0.7 * y),
-            slope_y - amplitude * 0.7 * k * std::sin(k * x) * std::sin(k * 0.7 * y)};
+    Eigen::Vector2d g(slope_x + amplitude * k * std::cos(k * x) * std::cos(k * 0.7 * y),
+                      slope_y - amplitude * 0.7 * k * std::sin(k * x) * std::sin(k * 0.7 * y));
+    if (relief > 0.0) {  // central differences: the relief is only used where the raster does not reach
+        const double e = 0.05 * relief_wavelength;
+        const double r0 = relief * ValueNoise((x - e) / relief_wavelength, y / relief_wavelength, seed);
+        const double r1 = relief * ValueNoise((x + e) / relief_wavelength, y / relief_wavelength, seed);
+        const double r2 = relief * ValueNoise(x / relief_wavelength, (y - e) / relief_wavelength, seed);
+        const double r3 = relief * ValueNoise(x / relief_wavelength, (y + e) / relief_wavelength, seed);
+        g += Eigen::Vector2d(r1 - r0, r3 - r2) / (2.0 * e);
+    }
+    return g;
 }
 
 double IntersectBox(const OrientedBox& box, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,

@@ -57,15 +57,24 @@ struct Sphere {
     Material material = Material::kVegetation;
 };
 
-/// Ground height field: a tilted plane plus a long-wavelength undulation (gentle slopes).
+/// Ground height field: a tilted plane plus a long-wavelength undulation (gentle slopes), metre-scale
+/// relief (value noise: the slope varies from place to place as on a real street) and centimetre-scale
+/// roughness. The roughness is only added where a ray hits (RayCaster), not to `Height`.
 struct Ground {
     double base_height = 0.0;   ///< [m]
     double slope_x = 0.0;       ///< [m per m]
     double slope_y = 0.0;       ///< [m per m]
     double amplitude = 0.0;     ///< [m] of the undulation
     double wavelength = 300.0;  ///< [m] of the undulation
+    double relief = 0.0;        ///< [m] amplitude of the metre-scale relief
+    double relief_wavelength = 8.0;       ///< [m] its lattice spacing
+    double roughness = 0.0;     ///< [m] amplitude of the centimetre-scale roughness
+    double roughness_wavelength = 0.3;    ///< [m] its lattice spacing
+    std::uint64_t seed = 0;     ///< of the relief and roughness
 
     double Height(double x, double y) const;
+    /// Roughness at (x, y) [m], in [-roughness, roughness].
+    double Roughness(double x, double y) const;
     /// d(height)/dx, d(height)/dy.
     Eigen::Vector2d Gradient(double x, double y) const;
 };

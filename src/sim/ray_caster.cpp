@@ -3,10 +3,28 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/counter_random.hpp"
+
 namespace revisit {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Uniform in (0, 1] from a key (counter-based, like the scan simulator's draws).
+double UnitDraw(std::uint64_t key) { return UnitFromKey(key) + 1.0 / 9007199254740992.0; }
+
+/// A foliage volume: the return comes from an exponentially distributed depth after entering the
+/// sphere (mean `free_path`), or the ray passes through when that depth is beyond the exit.
+double IntersectFoliage(const Sphere& sphere, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                        double t_min, double t_max, double free_path, std::uint64_t key) {
+    const Eigen::Vector3d o = origin - sphere.center;
+    const double b = o.dot(direction);
+    const double disc = b * b - (o.squaredNorm() - sphere.radius * sphere.radius);
+    if (disc < 0.0) return kInf;
+    const double root = std::sqrt(disc);
+    const double t = std::max(-b - root, t_min) - free_path * std::log(UnitDraw(key));
+    return (t > t_min && t < t_max && t < -b + root) ? t : kInf;
+}
 
 }  // namespace
 
@@ -148,7 +166,8 @@ double RayCaster::IntersectGroundRaster(const Eigen::Vector3d& origin, const Eig
 }
 
 double RayCaster::CastCell(std::size_t cell, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                           double t_min, double t_max, double time, Material& material) const {
+                           double t_min, double t_max, double time, std::uint64_t ray_key,
+                           Material& material) const {
     double best = t_max;
     for (std::uint32_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
         const std::uint32_t item = items_[k];
@@ -173,10 +192,15 @@ double RayCaster::CastCell(std::size_t cell, const Eigen::Vector3d& origin, cons
                 t = IntersectCylinder(world_.cylinders[index], origin, direction, t_min, best);
                 if (t < best) material = world_.cylinders[index].material;
                 break;
-            default:
-                t = IntersectSphere(world_.spheres[index], origin, direction, t_min, best);
-                if (t < best) material = world_.spheres[index].material;
+            default: {
+                const Sphere& sphere = world_.spheres[index];
+                t = sphere.material == Material::kVegetation && world_.foliage_free_path > 0.0
+                        ? IntersectFoliage(sphere, origin, direction, t_min, best, world_.foliage_free_path,
+                                           ray_key ^ (index * 0xD1B54A32D192ED03ULL))
+                        : IntersectSphere(sphere, origin, direction, t_min, best);
+                if (t < best) material = sphere.material;
                 break;
+            }
         }
         if (t < best) best = t;
     }
@@ -190,7 +214,8 @@ RayHit RayCaster::Cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir
 }
 
 RayHit RayCaster::Cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double min_range,
-                       double max_range, double time, const std::vector<OrientedBox>& dynamic_boxes) const {
+                       double max_range, double time, const std::vector<OrientedBox>& dynamic_boxes,
+                       std::uint64_t ray_key) const {
     RayHit hit;
     Material material = Material::kGround;
     // Ground and ceiling bound the traversal; when nothing is in front of them they are the hit.
@@ -252,7 +277,7 @@ RayHit RayCaster::Cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir
             // Skip the cell when the ray passes above everything in it.
             const double z_low = origin.z() + direction.z() * (direction.z() >= 0.0 ? t_cell_start : t_cell_end);
             if (cell_begin_[c] != cell_begin_[c + 1] && z_low <= cell_top_[c]) {
-                const double t = CastCell(c, origin, direction, min_range, best, time, material);
+                const double t = CastCell(c, origin, direction, min_range, best, time, ray_key, material);
                 if (t < best) best = t, surface_at_end = false;
             }
             if (best <= t_cell_end || t_cell_end >= t1) break;
@@ -270,7 +295,17 @@ RayHit RayCaster::Cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir
     if (best < t_end || surface_at_end) {
         hit.range = best;
         if (best == t_ground) {  // nothing in front of the ground: asphalt or not
-            const Eigen::Vector3d p = origin + best * direction;
+            Eigen::Vector3d p = origin + best * direction;
+            // Centimetre roughness: one Newton step from the smooth surface to the rough one (grazing
+            // rays move most, as on a real street); bounded so a grazing ray cannot jump far.
+            const double bump = world_.ground.Roughness(p.x(), p.y());
+            if (bump != 0.0) {
+                Eigen::Vector2d g;
+                GroundHeight(p.x(), p.y(), &g);
+                const double df = direction.z() - g.dot(direction.head<2>());
+                if (df < -1e-3) hit.range = best + std::clamp(bump / df, -1.0, 1.0);
+                p = origin + hit.range * direction;
+            }
             material = IsRoad(p.x(), p.y()) ? Material::kRoad : Material::kGround;
         }
         hit.material = material;

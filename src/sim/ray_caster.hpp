@@ -29,8 +29,10 @@ class RayCaster {
 
     /// First hit along origin + t * direction (unit), t in (min_range, max_range). `time` [s]
     /// selects which parked cars exist; `dynamic_boxes` (moving cars now) are tested by brute force.
+    /// `ray_key` seeds the ray's draws (depth in foliage, micro-relief is a function of the place).
     RayHit Cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double min_range,
-                double max_range, double time, const std::vector<OrientedBox>& dynamic_boxes) const;
+                double max_range, double time, const std::vector<OrientedBox>& dynamic_boxes,
+                std::uint64_t ray_key = 0) const;
     RayHit Cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double min_range,
                 double max_range, double time = 0.0) const;
 
@@ -49,7 +51,7 @@ class RayCaster {
     double IntersectGroundRaster(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
                                  double t_max) const;
     double CastCell(std::size_t cell, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                    double t_min, double t_max, double time, Material& material) const;
+                    double t_min, double t_max, double time, std::uint64_t ray_key, Material& material) const;
 
     const World& world_;
     RayCasterConfig config_;

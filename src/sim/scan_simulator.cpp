@@ -7,16 +7,10 @@
 #include <cmath>
 
 #include "core/se3.hpp"
+#include "sim/counter_random.hpp"
 
 namespace revisit {
 namespace {
-
-std::uint64_t SplitMix64(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ULL;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-    return x ^ (x >> 31);
-}
 
 /// Counter-based random numbers for one ray.
 struct RayRandom {
@@ -61,10 +55,10 @@ Scan SimulateScan(const RayCaster& caster, const SensorConfig& sensor, const std
             const Eigen::Vector3d direction = T_world_ray.linear() * ray.direction;
             const double time_in_world = sweep.timestamp - period + ray.time;
             const RayHit hit = caster.Cast(origin, direction, sensor.min_range, sensor.max_range, time_in_world,
-                                           sweep.dynamic_boxes);
+                                           sweep.dynamic_boxes, SplitMix64(random.state));
             if (!hit.hit()) continue;
             const double sigma = sensor.range_noise + sensor.range_noise_quadratic * hit.range * hit.range;
-            const double range = hit.range + sigma * random.Normal();
+            const double range = hit.range + ray.range_offset + sigma * random.Normal();
             if (range < sensor.min_range || range > sensor.max_range) continue;
             // Raw measurement: in the sensor frame at the ray's own time (what deskewing undoes).
             Eigen::Vector3d point = ray.direction * range;

@@ -1,6 +1,9 @@
 #include "sim/sensor.hpp"
 
 #include <cmath>
+#include <cstdint>
+
+#include "sim/counter_random.hpp"
 
 namespace revisit {
 namespace {
@@ -10,6 +13,24 @@ double Radians(double degrees) { return degrees * kPi / 180.0; }
 
 Eigen::Vector3d FromAngles(double azimuth, double elevation) {
     return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
+}
+
+/// Deterministic draw in [-1, 1) from a key (counter-based: no state shared between beams or sweeps).
+double Signed(std::uint64_t key) { return 2.0 * UnitFromKey(key) - 1.0; }
+
+/// Approximately normal (sum of three uniforms, variance 1) for beam `beam`, quantity `what`.
+double BeamNormal(std::size_t beam, std::uint64_t what) {
+    const std::uint64_t key = (static_cast<std::uint64_t>(beam) << 8) ^ (what * 0xD1B54A32D192ED03ULL);
+    return Signed(key) + Signed(key ^ 0x1111) + Signed(key ^ 0x2222);
+}
+
+/// Calibration residuals of a factory-calibrated spinning unit (HDL-64E: per-laser corrections are
+/// given to ~0.1 deg and ~2 cm; the firing azimuths are not locked to the revolution).
+void SpinningImperfections(SensorConfig& config) {
+    config.beam_elevation_sigma = Radians(0.05);
+    config.beam_azimuth_sigma = Radians(0.05);
+    config.beam_range_sigma = 0.015;
+    config.azimuth_jitter = true;
 }
 
 }  // namespace
@@ -31,6 +52,7 @@ SensorConfig Hdl64Sensor() {
     for (int i = 0; i < 32; ++i) config.vertical_angles.push_back(Radians(2.0 - i / 3.0));
     for (int i = 0; i < 32; ++i) config.vertical_angles.push_back(Radians(-8.83 - 0.5 * i));
     config.azimuth_steps = 2048;
+    SpinningImperfections(config);
     config.min_range = 2.5;
     config.max_range = 120.0;
     return config;
@@ -41,6 +63,7 @@ SensorConfig Vlp16Sensor() {
     config.label = "VLP16";
     for (int i = 0; i < 16; ++i) config.vertical_angles.push_back(Radians(15.0 - 2.0 * i));
     config.azimuth_steps = 1800;
+    SpinningImperfections(config);
     config.min_range = 1.0;
     config.max_range = 100.0;
     config.range_noise = 0.03;
@@ -52,6 +75,7 @@ SensorConfig Os128Sensor() {
     config.label = "OS128";
     for (int i = 0; i < 128; ++i) config.vertical_angles.push_back(Radians(22.5 - 45.0 * i / 127.0));
     config.azimuth_steps = 1024;
+    SpinningImperfections(config);
     config.min_range = 1.0;
     config.max_range = 120.0;
     config.range_noise = 0.03;
@@ -103,10 +127,20 @@ std::vector<SensorRay> MakeRays(const SensorConfig& config, std::size_t sweep_in
     switch (config.type) {
         case SensorType::kSpinning: {
             // Firing order: all beams at one azimuth, azimuth sweeping counter-clockwise from the back.
+            const std::size_t beams = config.vertical_angles.size();
+            std::vector<double> d_elevation(beams, 0.0), d_azimuth(beams, 0.0), d_range(beams, 0.0);
+            for (std::size_t b = 0; b < beams; ++b) {
+                d_elevation[b] = config.beam_elevation_sigma * BeamNormal(b, 1);
+                d_azimuth[b] = config.beam_azimuth_sigma * BeamNormal(b, 2);
+                d_range[b] = config.beam_range_sigma * BeamNormal(b, 3);
+            }
+            const double phase = config.azimuth_jitter ? 0.5 * (1.0 + Signed(0xA5A5A5A5ULL + sweep_index)) : 0.0;
             for (int a = 0; a < config.azimuth_steps; ++a) {
-                const double f = static_cast<double>(a) / config.azimuth_steps;
+                const double f = (a + phase) / config.azimuth_steps;
                 const double azimuth = -kPi + 2.0 * kPi * f;
-                for (double elevation : config.vertical_angles) rays.push_back({FromAngles(azimuth, elevation), f * period});
+                for (std::size_t b = 0; b < beams; ++b)
+                    rays.push_back({FromAngles(azimuth + d_azimuth[b], config.vertical_angles[b] + d_elevation[b]),
+                                    f * period, d_range[b]});
             }
             break;
         }

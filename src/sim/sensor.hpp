@@ -20,6 +20,13 @@ struct SensorConfig {
     double dropout = 0.03;                    ///< probability that a return is lost
     double intensity_noise = 0.03;            ///< sigma of the intensity [0..1]
     bool motion_distortion = false;           ///< rays leave from the pose at their own time in the sweep
+    // A real unit's imperfections (issue 15): every beam is off by a fixed calibration residual, and a
+    // spinning head does not fire at the same azimuths in every sweep. Without them each ray of a
+    // stationary sensor hits exactly the same spot sweep after sweep.
+    double beam_elevation_sigma = 0.0;        ///< [rad] per-beam elevation offset, fixed for the unit
+    double beam_azimuth_sigma = 0.0;          ///< [rad] per-beam azimuth offset, fixed for the unit
+    double beam_range_sigma = 0.0;            ///< [m] per-beam range offset, fixed for the unit
+    bool azimuth_jitter = false;              ///< spinning: each sweep starts at a random fraction of an azimuth step
 
     // Spinning LiDAR.
     std::vector<double> vertical_angles;      ///< [rad] elevation of each beam (ring), top first
@@ -55,9 +62,11 @@ SensorConfig DepthCameraSensor();
 struct SensorRay {
     Eigen::Vector3d direction;  ///< unit, in the sensor frame (x forward, y left, z up)
     double time = 0.0;          ///< [s] from the start of the sweep
+    double range_offset = 0.0;  ///< [m] the beam's calibration residual, added to the measured range
 };
 
-/// The rays of sweep `sweep_index`. The rosette's pattern keeps evolving from sweep to sweep.
+/// The rays of sweep `sweep_index`. The rosette's pattern keeps evolving from sweep to sweep; a spinning
+/// head's azimuths shift by a fraction of a step when `azimuth_jitter` is on.
 std::vector<SensorRay> MakeRays(const SensorConfig& config, std::size_t sweep_index);
 
 }  // namespace revisit

@@ -87,7 +87,7 @@ SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, cons
     summary.primitives = plan.world.NumPrimitives();
     summary.revisits = plan.revisits.size();
     for (const auto& r : plan.revisits) summary.opposite_revisits += r.opposite ? 1 : 0;
-    const bool fixed_pattern = config.sensor.type != SensorType::kRosette;
+    const bool fixed_pattern = config.sensor.type != SensorType::kRosette && !config.sensor.azimuth_jitter;
     std::vector<SensorRay> rays;
     if (fixed_pattern) rays = MakeRays(config.sensor, 0);
     tbb::task_group writing;
@@ -148,7 +148,21 @@ std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
     if (config.world == WorldKind::kIndoor)
         out << "indoor: {rooms_x: " << config.indoor.rooms_x << ", rooms_y: " << config.indoor.rooms_y
             << ", room_size: " << config.indoor.room_size << "}\n";
-    if (config.world == WorldKind::kAroundTrajectory) out << "trajectory_file: \"" << config.trajectory_file.string() << "\"\n";
+    if (config.world == WorldKind::kAroundTrajectory)
+        out << "trajectory_file: \"" << config.trajectory_file.string() << "\"\n"
+            << "around: {clearance: " << config.around.clearance << ", near_clearance: " << config.around.near_clearance
+            << ", parking_offset: " << config.around.parking_offset << "}\n";
+    // Realism of the worlds (issue 15): ground relief and roughness, foliage, roadside clutter.
+    const CityConfig& city = config.world == WorldKind::kAroundTrajectory ? config.around.city : config.city;
+    if (config.world == WorldKind::kCity || config.world == WorldKind::kAroundTrajectory)
+        out << "surfaces: {ground_relief: " << city.ground_relief << ", ground_roughness: " << city.ground_roughness
+            << ", foliage_free_path: " << city.foliage_free_path << ", bush_spacing: " << city.bush_spacing << "}\n";
+    if (config.world == WorldKind::kHighway)
+        out << "surfaces: {ground_relief: " << config.highway.ground_relief
+            << ", ground_roughness: " << config.highway.ground_roughness
+            << ", foliage_free_path: " << config.highway.foliage_free_path
+            << ", bush_spacing: " << config.highway.bush_spacing << ", rail_post_spacing: " << config.highway.rail_post_spacing
+            << "}\n";
     out << "route: {length: " << config.route.length << ", revisits: " << config.route.revisits
         << ", opposite_fraction: " << config.route.opposite_fraction << ", min_revisit_gap: " << config.route.min_revisit_gap
         << "}\n"
@@ -158,7 +172,10 @@ std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
         << "sensor: {type: " << SensorName(s.type) << ", label: " << s.label << ", rate: " << s.rate
         << ", beams: " << s.vertical_angles.size() << ", azimuth_steps: " << s.azimuth_steps
         << ", min_range: " << s.min_range << ", max_range: " << s.max_range << ", range_noise: " << s.range_noise
-        << ", dropout: " << s.dropout << ", motion_distortion: " << (s.motion_distortion ? "true" : "false") << "}\n"
+        << ", dropout: " << s.dropout << ", motion_distortion: " << (s.motion_distortion ? "true" : "false")
+        << ", beam_elevation_sigma: " << s.beam_elevation_sigma << ", beam_azimuth_sigma: " << s.beam_azimuth_sigma
+        << ", beam_range_sigma: " << s.beam_range_sigma << ", azimuth_jitter: " << (s.azimuth_jitter ? "true" : "false")
+        << "}\n"
         << "odometry_noise: {enabled: " << (config.odometry.enabled ? "true" : "false")
         << ", speed_scale_bias: " << config.odometry.speed_scale_bias << ", yaw_rate_bias: " << config.odometry.yaw_rate_bias
         << ", yaw_bias_random_walk: " << config.odometry.yaw_bias_random_walk << "}\n"

@@ -61,6 +61,10 @@ struct World {
     std::vector<RoadSegment> roads;     ///< asphalt areas (lower reflectivity than the ground)
     StreetGraph streets;
     double lane_offset = 2.0;           ///< [m] to the right of a street's centre line where vehicles drive
+    /// [m] mean free path of a ray in foliage (vegetation spheres: crowns, bushes): a ray enters a
+    /// crown and returns from an exponentially distributed depth, or passes through when that is
+    /// beyond the crown, so foliage scatters returns through its volume as real trees do. 0: solid.
+    double foliage_free_path = 0.0;
 
     std::size_t NumPrimitives() const { return boxes.size() + cylinders.size() + spheres.size(); }
 };

@@ -79,6 +79,8 @@ TEST(RayCaster, GridMatchesBruteForceInACity) {
     CityConfig config;
     config.blocks_x = 3;
     config.blocks_y = 3;
+    // Solid crowns and the smooth ground: the brute force below knows only exact surfaces.
+    config.foliage_free_path = config.ground_relief = config.ground_roughness = 0.0;
     const World world = GenerateCity(config, 5);
     const RayCaster caster(world);
     std::mt19937 rng(3);
@@ -110,6 +112,33 @@ TEST(RayCaster, GridMatchesBruteForceInACity) {
         }
     }
     EXPECT_GT(hits, 2000);
+}
+
+TEST(RayCaster, FoliageScattersReturnsThroughItsVolume) {
+    World world;
+    world.foliage_free_path = 0.8;
+    world.spheres.push_back({Eigen::Vector3d(10.0, 0.0, 2.0), 2.0, Material::kVegetation});
+    world.boxes.push_back({Eigen::Vector2d(30.0, 0.0), Eigen::Vector2d(0.5, 30.0), 0.0, -1.0, 10.0, Material::kWall});
+    const RayCaster caster(world);
+    int in_crown = 0, through = 0;
+    double deepest = 0.0;
+    for (std::uint64_t key = 0; key < 2000; ++key) {
+        const RayHit hit = caster.Cast(Eigen::Vector3d(0, 0, 2.0), Eigen::Vector3d::UnitX(), 0.5, 100.0, 0.0, {}, key);
+        ASSERT_TRUE(hit.hit());
+        if (hit.material == Material::kVegetation) {
+            ASSERT_GE(hit.range, 8.0);
+            ASSERT_LE(hit.range, 12.0);
+            deepest = std::max(deepest, hit.range);
+            ++in_crown;
+        } else {
+            EXPECT_NEAR(hit.range, 29.5, 1e-9);
+            ++through;
+        }
+    }
+    // 4 m of foliage at a 0.8 m free path: exp(-5) = 0.7% pass through; returns spread over metres.
+    EXPECT_GT(in_crown, 1900);
+    EXPECT_GT(through, 2);
+    EXPECT_GT(deepest, 10.5);
 }
 
 }  // namespace
