@@ -2,8 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -143,7 +141,8 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         Eigen::Isometry3d delta_translation = delta;
         delta_translation.linear().setIdentity();
         std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel) : 0;
-        if (config_.turn_hypothesis && !poses_.empty() &&
+        // Only for extrapolated motion: a wheel-odometry prior measures the turn.
+        if (config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
             ModelError(delta_translation.inverse() * delta, config_.ThresholdRange()) > voxel) {
             const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
             const std::size_t alternative_agreeing =
@@ -160,7 +159,6 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         // A correction is judged by its translation: the rotation part of the model error grows with
         // max_range, and a swaying handheld sensor turns 15 deg between keyframes legitimately.
         const double correction = (T_predicted.inverse() * icp.T_world_sensor).translation().norm();
-        if (std::getenv("REVISIT_DEBUG_ODOMETRY")) std::fprintf(stderr, "DBG %zu agree %.3f\n", scan.index, stats_.agreement);
         if (!icp.valid) {
             problem = "only " + std::to_string(icp.correspondences) + " correspondences within " +
                       Describe(params.max_correspondence_distance) + " m of the map";

@@ -36,8 +36,9 @@ struct OdometryConfig {
     /// scan does not show the mapped scene (sensor fault, garbage) and keeps the prediction. 0 = off.
     double min_agreement = 0.1;
     // Motion model and inputs.
-    /// Also register from the translation-only prediction when the predicted turn moves points by more
-    /// than a voxel, keeping the better result (swaying handheld sensors; 2 ICPs on those frames).
+    /// Also register from the translation-only prediction when the constant-velocity turn moves points by
+    /// more than a voxel, keeping the better result (swaying handheld sensors; 2 ICPs on those frames;
+    /// never with a wheel-odometry prior, which measures the turn).
     bool turn_hypothesis = true;
     bool deskew = false;             ///< constant-velocity motion compensation of each sweep
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))

@@ -103,6 +103,9 @@ AutoSettings ApplyAutoSettings(PipelineConfig& config, const DataProfile& profil
             choice.applied = true;
             continue;
         }
+        // Warn only about the scale of the scene and the sensor's kind: a preset's finer thresholds
+        // or a shorter minimum range are choices, not contradictions.
+        if (choice.key != "odometry.max_range" && choice.key != "odometry.voxel_size" && choice.key != "odometry.planar") continue;
         const double given = schema.Number(choice.key).value_or(choice.value);
         const bool far = given <= 0.0 || choice.value <= 0.0
                              ? (given == 0.0) != (choice.value == 0.0)

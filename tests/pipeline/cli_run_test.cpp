@@ -64,7 +64,21 @@ TEST(CliRun, SimulatedSequenceRunsWithTheDefaults) {
                             Quote((dir / "auto").string()));
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_EQ(run.output.find("--config sim"), std::string::npos) << run.output;
-    EXPECT_DOUBLE_EQ(LoadConfig({RunFolder::Open(dir / "auto").config().string()}, {}).odometry.voxel_size, 0.0);
+    // Issue 14: the settings follow from the first scans, are printed with their reasons and kept in config.yaml.
+    EXPECT_NE(run.output.find("settings from the data"), std::string::npos) << run.output;
+    const fs::path config_file = RunFolder::Open(dir / "auto").config();
+    const PipelineConfig config = LoadConfig({config_file.string()}, {});
+    EXPECT_GT(config.odometry.voxel_size, 0.0);
+    EXPECT_LT(config.odometry.min_range, 5.0);
+    std::ifstream in(config_file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("# Settings derived from the data"), std::string::npos) << text;
+    EXPECT_NE(text.find("odometry.voxel_size = "), std::string::npos) << text;
+    // An explicit value wins over the data.
+    const auto set = RunCli("run " + Quote(test::TinySimDataset().string()) + " --to 20 --set odometry.voxel_size=0.7 " +
+                            "--set output.write_report=false --out " + Quote((dir / "set").string()));
+    ASSERT_EQ(set.exit_code, 0) << set.output;
+    EXPECT_DOUBLE_EQ(LoadConfig({RunFolder::Open(dir / "set").config().string()}, {}).odometry.voxel_size, 0.7);
 }
 
 TEST(CliRun, InterruptedRunLeavesAValidPartialFolder) {
