@@ -11,6 +11,8 @@
 namespace revisit {
 namespace {
 
+constexpr std::size_t kAgreementSamples = 500;  ///< points checked for the agreement share
+
 const OdometryConfig& Validated(const OdometryConfig& config) {
     auto require = [](bool ok, const char* what) {
         if (!ok) throw ConfigError(std::string("odometry: ") + what);
@@ -84,10 +86,10 @@ std::string LidarOdometry::DegeneracyReason(const std::vector<Eigen::Vector3d>& 
 }
 
 std::size_t LidarOdometry::CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor,
-                                         double radius) const {
+                                         double radius, std::size_t stride) const {
     std::size_t count = 0;
-    for (const auto& p : source) count += map_.FindNearest(T_world_sensor * p, radius) != nullptr;
-    return count;
+    for (std::size_t i = 0; i < source.size(); i += stride) count += map_.FindNearest(T_world_sensor * source[i], radius) != nullptr;
+    return count * stride;
 }
 
 double LidarOdometry::CorrectionLimit() const {
@@ -140,20 +142,24 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         // the result more points agree with (within one voxel of the map).
         Eigen::Isometry3d delta_translation = delta;
         delta_translation.linear().setIdentity();
-        std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel) : 0;
+        // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
+        // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
+        const std::size_t stride = std::max<std::size_t>(1, source.size() / kAgreementSamples);
+        std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel, stride) : 0;
         // Only for extrapolated motion: a wheel-odometry prior measures the turn.
         if (config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
             ModelError(delta_translation.inverse() * delta, config_.ThresholdRange()) > voxel) {
             const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
             const std::size_t alternative_agreeing =
-                alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel) : 0;
+                alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel, 1) : 0;
+            if (icp.valid) agreeing = CountAgreeing(source, icp.T_world_sensor, voxel, 1);
             if (alternative_agreeing > agreeing) {
                 icp = alternative;
                 agreeing = alternative_agreeing;
                 stats_.turn_hypothesis_used = true;
             }
         }
-        stats_.agreement = source.empty() ? 0.0 : static_cast<double>(agreeing) / static_cast<double>(source.size());
+        stats_.agreement = source.empty() ? 0.0 : std::min(1.0, static_cast<double>(agreeing) / static_cast<double>(source.size()));
         stats_.iterations = icp.iterations;
         stats_.correspondences = icp.correspondences;
         // A correction is judged by its translation: the rotation part of the model error grows with

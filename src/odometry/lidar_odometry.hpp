@@ -59,8 +59,10 @@ class LidarOdometry {
     /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
     std::string DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const;
 
-    /// Source points within `radius` of a map point when placed at `T_world_sensor`.
-    std::size_t CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius) const;
+    /// Source points within `radius` of a map point when placed at `T_world_sensor` (every `stride`-th
+    /// point checked, the count scaled back).
+    std::size_t CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius,
+                              std::size_t stride) const;
     /// [m] a translation correction beyond this is a jump, not a registration.
     double CorrectionLimit() const;
 
