@@ -136,17 +136,17 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         params.min_correspondences = config_.min_correspondences;
         params.planar = config_.planar;
         IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
-        // A swaying sensor (handheld, legged) reverses its turns between scans, so constant velocity
-        // can predict the rotation wrongly by more than ICP's basin. When the predicted turn moves
-        // points by more than a voxel, also register from the translation-only prediction and keep
-        // the result more points agree with (within one voxel of the map).
-        Eigen::Isometry3d delta_translation = delta;
-        delta_translation.linear().setIdentity();
         // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
         // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
         const std::size_t stride = std::max<std::size_t>(1, source.size() / kAgreementSamples);
         std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel, stride) : 0;
-        // Only for extrapolated motion: a wheel-odometry prior measures the turn.
+        // A swaying sensor (handheld, legged) reverses its turns between scans, so constant velocity
+        // can predict the rotation wrongly by more than ICP's basin. When the predicted turn moves
+        // points by more than a voxel, also register from the translation-only prediction and keep
+        // the result more points agree with (within one voxel of the map). Only for extrapolated
+        // motion: a wheel-odometry prior measures the turn.
+        Eigen::Isometry3d delta_translation = delta;
+        delta_translation.linear().setIdentity();
         if (config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
             ModelError(delta_translation.inverse() * delta, config_.ThresholdRange()) > voxel) {
             const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
