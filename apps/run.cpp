@@ -45,9 +45,11 @@ void AddRunCommand(CLI::App& root, Action& action) {
         "and the pose graph, as scans arrive. Writes a run folder (see README: Output files) and, when the\n"
         "dataset has reference poses or --gt is given, precision/recall/F1 and APE. Ctrl-C stops cleanly\n"
         "and writes what was computed (run.json: complete = false).\n"
+        "Settings no --config/--set gives are derived from the first scans (ranges, field of view, points per\n"
+        "scan, a 2D laser's aperture measured against its wheel odometry) and printed with the reasons.\n"
         "Examples:\n"
         "  revisit run ~/kitti/sequences/00 --config kitti\n"
-        "  revisit run intel.rawlog --config indoor2d --out runs/intel\n"
+        "  revisit run intel.rawlog --config indoor2d --out runs/intel   (the 180-deg aperture is measured)\n"
         "  revisit run seq/ --poses dataset --set density.resolution=0.2 --threads 2");
     cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, or .rawlog[.gz]")->required();
     AddConfigOptions(*cmd, o->config);
