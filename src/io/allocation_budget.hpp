@@ -1,0 +1,28 @@
+#pragma once
+/// A bound on what MRPT may allocate while it deserializes one rawlog object. MRPT trusts the size
+/// fields it reads (a 4 KB file can declare a 4-billion-point cloud) and does not check its aligned
+/// allocations for failure; within an AllocationBudget scope, an allocation that would exceed the
+/// budget throws std::bad_alloc instead, which the reader reports as a damaged rawlog.
+///
+/// Covered: mrpt::aligned_malloc/aligned_calloc (MRPT's point clouds, range scans; this library
+/// provides them, calling the C library) and, in builds without AddressSanitizer, the global operator
+/// new (std::vector, std::string). Not covered: OpenCV's allocator (images inside 3D range scans)
+/// and, in sanitizer builds, operator new (the sanitizer owns it; libFuzzer's -rss_limit_mb and
+/// -malloc_limit_mb bound those runs).
+#include <cstddef>
+
+namespace revisit {
+
+class AllocationBudget {
+  public:
+    /// Allocations on this thread may total `bytes` until the scope ends (scopes do not nest).
+    explicit AllocationBudget(std::size_t bytes);
+    ~AllocationBudget();
+    AllocationBudget(const AllocationBudget&) = delete;
+    AllocationBudget& operator=(const AllocationBudget&) = delete;
+
+    /// True when operator new is bounded too (not in sanitizer builds).
+    static bool CoversOperatorNew();
+};
+
+}  // namespace revisit
