@@ -228,9 +228,10 @@ RunState ReadRunState(const RunFolder& run) {
         // Every resolution the chain computes is >= density.min_resolution's lower bound: a smaller
         // one would ask for images of billions of pixels when drawn.
         if (m.density_resolution != 0.0 && !(m.density_resolution >= kMinDensityResolution)) {
-            throw DatasetError(maps.file(), "density_resolution " + std::to_string(m.density_resolution) +
-                                                " m/px is below the smallest a run writes (" +
-                                                std::to_string(kMinDensityResolution) + ")", i + 2);
+            std::ostringstream problem;
+            problem << "density_resolution " << m.density_resolution << " m/px is below the smallest a run writes ("
+                    << kMinDensityResolution << " m/px)";
+            throw DatasetError(maps.file(), problem.str(), i + 2);
         }
         m.T_world_map = maps.Pose(i, "T_world_map");
         m.T_world_map_corrected = maps.Pose(i, "T_world_map_corrected");

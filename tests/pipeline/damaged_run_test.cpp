@@ -1,6 +1,9 @@
 /// Issue 17, the commands' side: damaged options, ground truth, configs and run folders give a named
 /// error (or, for the report's closure database, a named warning), never a silent result.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -41,11 +44,13 @@ fs::path CopyOfGoodRun(const test::TempDir& dir) {
     return copy;
 }
 
-/// Replaces the first occurrence of `from` after the header line of `file` by `to`.
-void ReplaceInBody(const fs::path& file, const std::string& from, const std::string& to) {
+/// Replaces the first occurrence of `from` in line `line` (1: the header) of `file` by `to`.
+void ReplaceInLine(const fs::path& file, int line, const std::string& from, const std::string& to) {
     std::string text = ReadText(file);
-    const auto at = text.find(from, text.find('\n'));
-    ASSERT_NE(at, std::string::npos) << from << " not in " << file;
+    std::size_t start = 0;
+    for (int i = 1; i < line; ++i) start = text.find('\n', start) + 1;
+    const auto at = text.find(from, start);
+    ASSERT_LT(at, text.find('\n', start)) << from << " not in line " << line << " of " << file;
     text.replace(at, from.size(), to);
     std::ofstream(file, std::ios::binary) << text;
 }
@@ -91,12 +96,18 @@ TEST(DamagedRun, NonFiniteOrImplausibleRunFilesAreNamedErrors) {
     const std::string original = ReadText(maps);
     const auto table = CsvTable::Read(maps);
     ASSERT_GE(table.size(), 2u);
-    ReplaceInBody(maps, "," + table.Text(1, "density_resolution") + ",", ",1e-300,");
+    ReplaceInLine(maps, 3, "," + table.Text(1, "density_resolution") + ",", ",1e-300,");
     const auto tiny = RunCli("report " + Quote(run.string()));
     EXPECT_EQ(tiny.exit_code, 1);
     EXPECT_NE(tiny.output.find("local_maps.csv:3: density_resolution"), std::string::npos) << tiny.output;
     std::ofstream(maps, std::ios::binary) << original;
-    ReplaceInBody(maps, "," + table.Text(0, "T_world_map_corrected_03") + ",", ",nan,");
+    // The translation x of the corrected pose: the 13th field from the end of row 1 (12 T_ground_map fields follow).
+    std::string row = ReadText(maps).substr(ReadText(maps).find('\n') + 1);
+    row = row.substr(0, row.find('\n'));
+    std::size_t at = row.size();
+    for (int i = 0; i < 13; ++i) at = row.rfind(',', at - 1);
+    const std::size_t end = row.find(',', at + 1);
+    ReplaceInLine(maps, 2, row, row.substr(0, at + 1) + "nan" + row.substr(end));
     const auto nan = RunCli("report " + Quote(run.string()));
     EXPECT_EQ(nan.exit_code, 1);
     EXPECT_NE(nan.output.find("local_maps.csv:2: column"), std::string::npos) << nan.output;
@@ -173,6 +184,30 @@ TEST(DamagedRun, InspectOfAMapThatDoesNotExistIsANamedError) {
     const auto result = RunCli("inspect " + Quote(GoodRun().string()) + " --maps 99 0");
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.output.find("no map 99"), std::string::npos) << result.output;
+}
+
+TEST(DamagedRun, CtrlCDuringTheReportExitsWith130) {
+    test::TempDir dir;
+    const fs::path out = dir / "run";
+    const std::string log = (dir / "log.txt").string();
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        freopen(log.c_str(), "w", stderr);
+        execl(REVISIT_CLI, REVISIT_CLI, "run", test::TinySimDataset().c_str(), "--to", "300", "--quiet", "--out",
+              out.c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    // run.json is written (renamed into place) when the chain ends: then only evaluation and the report run.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(out / "run.json") && std::chrono::steady_clock::now() < deadline) usleep(5000);
+    kill(pid, SIGINT);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << ReadText(log);
+    EXPECT_NE(ReadText(log).find("interrupted during evaluation or the report"), std::string::npos) << ReadText(log);
+    EXPECT_TRUE(ReadRunState(RunFolder::Open(out)).complete);  // the chain itself finished
 }
 
 }  // namespace
