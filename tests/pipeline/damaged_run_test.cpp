@@ -13,6 +13,7 @@
 #include "pipeline/csv.hpp"
 #include "pipeline/run_files.hpp"
 #include "sim_dataset.hpp"
+#include "small_disk.hpp"
 
 namespace revisit {
 namespace {
@@ -184,6 +185,25 @@ TEST(DamagedRun, InspectOfAMapThatDoesNotExistIsANamedError) {
     const auto result = RunCli("inspect " + Quote(GoodRun().string()) + " --maps 99 0");
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.output.find("no map 99"), std::string::npos) << result.output;
+}
+
+TEST(DamagedRun, AFullDiskIsNamedAndLeavesNoEmptyOrPartialFiles) {
+    test::SmallDisk disk(512 * 1024);
+    if (!disk.mounted()) GTEST_SKIP() << "cannot mount a small tmpfs (needs root)";
+    const fs::path out = disk.path() / "run";
+    const auto result = RunCli("run " + Quote(test::TinySimDataset().string()) + " --to 300 --quiet --out " +
+                               Quote(out.string()));
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_NE(result.output.find("No space left on device"), std::string::npos) << result.output;
+    std::size_t files = 0;
+    for (const auto& entry : fs::recursive_directory_iterator(disk.path())) {
+        if (!entry.is_regular_file()) continue;
+        ++files;
+        EXPECT_GT(entry.file_size(), 0u) << entry.path();
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+    }
+    EXPECT_GT(files, 0u);
+    EXPECT_FALSE(fs::exists(out / "run.json"));  // not a finished run, and nothing claims it is
 }
 
 TEST(DamagedRun, CtrlCDuringTheReportExitsWith130) {
