@@ -3,6 +3,8 @@
 # Usage: scripts/fuzz.sh [SECONDS]   each target SECONDS long (default 60); findings in build-fuzz/crashes/
 #        scripts/fuzz.sh --smoke     about 60 s over all targets (the `fuzz_smoke` test); exits 77 (skipped)
 #                                    when clang or its fuzzer runtime is missing
+# FUZZ_KEEP_GOING=1 (long runs): libFuzzer's fork mode goes on after a finding and counts crashes,
+# timeouts and OOMs (the log's last "#N ... oom/timeout/crash" line) instead of stopping at the first.
 # Every run: -timeout=10 (a hang is a finding), -rss_limit_mb=2048 and -malloc_limit_mb=2048 (memory
 # beyond what a small input can justify is a finding). Seeds come from the project's own writers.
 set -euo pipefail
@@ -38,6 +40,8 @@ rm -rf "$build/seeds"
 "$build/tests/fuzz_seeds" "$build/seeds"
 mkdir -p "$build/crashes"
 status=0
+keep_going=()
+if [[ "${FUZZ_KEEP_GOING:-0}" == 1 ]]; then keep_going=(-fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1); fi
 for target in "${targets[@]}"; do
   mkdir -p "$corpus/$target"
   log="$build/$target.log"
@@ -46,12 +50,13 @@ for target in "${targets[@]}"; do
   if ! UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=0 \
       "$build/tests/$target" "$corpus/$target" "$build/seeds/$target" -max_total_time="$seconds" \
       -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=16384 -print_final_stats=1 \
-      -artifact_prefix="$build/crashes/$target-" > "$log" 2>&1; then
+      -artifact_prefix="$build/crashes/$target-" "${keep_going[@]}" > "$log" 2>&1; then
     echo "$target: FINDING (see $log and $build/crashes/)"
     grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$log" | head -n 8 || true
     status=1
   fi
   grep -E "stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb" "$log" | tr '\n' ' ' || true
+  grep -E "oom/timeout/crash" "$log" | tail -n 1 || true
   echo
 done
 exit $status

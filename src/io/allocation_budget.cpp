@@ -4,26 +4,8 @@
 #include <cstring>
 #include <new>
 
-// AddressSanitizer owns operator new (gcc: __SANITIZE_ADDRESS__, clang: __has_feature).
-#if defined(__SANITIZE_ADDRESS__)
-#define REVISIT_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define REVISIT_ASAN 1
-#endif
-#endif
-#ifndef REVISIT_ASAN
-#define REVISIT_ASAN 0
-#endif
-
 namespace revisit {
 namespace {
-
-#if REVISIT_ASAN
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
 
 struct Budget {
     std::size_t left = 0;
@@ -57,7 +39,6 @@ void* AlignedAllocate(std::size_t size, std::size_t alignment) {
 
 AllocationBudget::AllocationBudget(std::size_t bytes) { t_budget = Budget{bytes, true}; }
 AllocationBudget::~AllocationBudget() { t_budget.active = false; }
-bool AllocationBudget::CoversOperatorNew() { return !kSanitized; }
 
 }  // namespace revisit
 
@@ -72,13 +53,26 @@ void* aligned_calloc(std::size_t bytes, std::size_t alignment) {
 }
 }  // namespace mrpt
 
-#if !REVISIT_ASAN
-// The global operator new, bounded inside a budget scope; the default operator delete (std::free)
-// releases it.
+// The global operator new, bounded inside a budget scope. Replaced as a set (new, new[], their
+// nothrow forms and every matching delete) on malloc/free, so that allocation and release always
+// pair, also under AddressSanitizer, which still checks every block through malloc/free.
 void* operator new(std::size_t size) {
     revisit::Charge(size);
     if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
     throw std::bad_alloc();
 }
 void* operator new[](std::size_t size) { return ::operator new(size); }
-#endif
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+    try {
+        return ::operator new(size);
+    } catch (...) {
+        return nullptr;
+    }
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return ::operator new(size, std::nothrow); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }

@@ -5,10 +5,9 @@
 /// budget throws std::bad_alloc instead, which the reader reports as a damaged rawlog.
 ///
 /// Covered: mrpt::aligned_malloc/aligned_calloc (MRPT's point clouds, range scans; this library
-/// provides them, calling the C library) and, in builds without AddressSanitizer, the global operator
-/// new (std::vector, std::string). Not covered: OpenCV's allocator (images inside 3D range scans)
-/// and, in sanitizer builds, operator new (the sanitizer owns it; libFuzzer's -rss_limit_mb and
-/// -malloc_limit_mb bound those runs).
+/// provides them, calling the C library) and the global operator new (std::vector, std::string),
+/// which this library replaces. Not covered: OpenCV's allocator (images inside 3D range scans) and
+/// aligned operator new.
 #include <cstddef>
 
 namespace revisit {
@@ -21,8 +20,6 @@ class AllocationBudget {
     AllocationBudget(const AllocationBudget&) = delete;
     AllocationBudget& operator=(const AllocationBudget&) = delete;
 
-    /// True when operator new is bounded too (not in sanitizer builds).
-    static bool CoversOperatorNew();
 };
 
 }  // namespace revisit
