@@ -10,6 +10,8 @@
 #include <iterator>
 
 #include "cli.hpp"
+#include "io/reader.hpp"
+#include "io/writer.hpp"
 #include "pipeline/csv.hpp"
 #include "pipeline/run_files.hpp"
 #include "sim_dataset.hpp"
@@ -204,6 +206,34 @@ TEST(DamagedRun, AFullDiskIsNamedAndLeavesNoEmptyOrPartialFiles) {
     }
     EXPECT_GT(files, 0u);
     EXPECT_FALSE(fs::exists(out / "run.json"));  // not a finished run, and nothing claims it is
+}
+
+TEST(DamagedRun, TruncatedRawlogFailsUnlessAllowedAndThenSaysSo) {
+    test::TempDir dir;
+    const fs::path rawlog = dir / "seq.rawlog.gz";
+    {
+        auto reader = OpenDataset(test::TinySimDataset());
+        auto writer = CreateRawlogWriter(rawlog);
+        for (int i = 0; i < 80; ++i) writer->Write(*reader->Next());
+        writer->Finish();
+    }
+    std::string bytes = ReadText(rawlog);
+    bytes.resize(bytes.size() * 3 / 4);
+    std::ofstream(rawlog, std::ios::binary) << bytes;
+    const std::string run = "run " + Quote(rawlog.string()) + " --config sim --quiet --set output.write_report=false --out ";
+    const auto refused = RunCli(run + Quote((dir / "a").string()));
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_NE(refused.output.find("truncated gzip stream"), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("scans"), std::string::npos) << refused.output;
+    const auto allowed = RunCli(run + Quote((dir / "b").string()) + " --allow-truncated");
+    EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
+    EXPECT_NE(allowed.output.find("warning: --allow-truncated"), std::string::npos) << allowed.output;
+    const std::string info = ReadText(dir / "b" / "run.json");
+    EXPECT_NE(info.find("\"truncated\": true"), std::string::npos) << info;
+    const RunState state = ReadRunState(RunFolder::Open(dir / "b"));
+    EXPECT_GT(state.odometry.size(), 20u);
+    EXPECT_LT(state.odometry.size(), 80u);
+    EXPECT_FALSE(state.truncated.empty());
 }
 
 TEST(DamagedRun, CtrlCDuringTheReportExitsWith130) {
