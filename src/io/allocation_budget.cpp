@@ -13,10 +13,15 @@ struct Budget {
 };
 thread_local Budget t_budget;
 
+/// Allocations below this size are not charged: a lying size field asks for one large block, while
+/// small blocks (strings, MRPT's exception backtraces, built while an exception is being thrown, where
+/// a second exception would terminate) are bounded by the bytes read to make them.
+constexpr std::size_t kChargedFrom = 64 << 10;  // [bytes]
+
 /// Charges `bytes` to the active budget; throws std::bad_alloc when it would be exceeded.
 void Charge(std::size_t bytes) {
     Budget& b = t_budget;
-    if (!b.active) return;
+    if (!b.active || bytes < kChargedFrom) return;
     if (bytes > b.left) {
         b.active = false;  // the exception's own allocation and the unwinding must not fail again
         throw std::bad_alloc();

@@ -2,7 +2,8 @@
 /// A bound on what MRPT may allocate while it deserializes one rawlog object. MRPT trusts the size
 /// fields it reads (a 4 KB file can declare a 4-billion-point cloud) and does not check its aligned
 /// allocations for failure; within an AllocationBudget scope, an allocation that would exceed the
-/// budget throws std::bad_alloc instead, which the reader reports as a damaged rawlog.
+/// budget throws std::bad_alloc instead, which the reader reports as a damaged rawlog. Blocks under
+/// 64 KiB are not charged (see allocation_budget.cpp).
 ///
 /// Covered: mrpt::aligned_malloc/aligned_calloc (MRPT's point clouds, range scans; this library
 /// provides them, calling the C library) and the global operator new (std::vector, std::string),
