@@ -26,7 +26,7 @@ bench: build
 	cmake --build $(BUILD_DIR) --target revisit_benchmarks -j $(JOBS)
 	@for b in $(BUILD_DIR)/bench/bench_*; do echo "== $$b"; $$b; done
 
-## libFuzzer on every reader, FUZZ_SECONDS long (default 60).
+## libFuzzer on every reader, each target FUZZ_SECONDS long (default 60), one after another.
 fuzz:
 	scripts/fuzz.sh $(or $(FUZZ_SECONDS),60)
 

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "io/output_folder.hpp"
 #include "io/reader.hpp"
 #include "io/writer.hpp"
 
@@ -16,6 +17,7 @@ struct ConvertOptions {
 };
 
 int RunConvert(const ConvertOptions& options) {
+    RefuseOutputOverInput(options.input, options.output);  // before anything is opened, even with --force
     ReaderOptions reader_options;
     reader_options.sensor_label = options.sensor;
     auto reader = OpenDataset(options.input, reader_options);

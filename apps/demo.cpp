@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run_and_report.hpp"
 #include "run_options.hpp"
@@ -40,7 +41,7 @@ int RunDemo(const DemoOptions& o) {
             if (!progress) progress.emplace(std::cerr, Progress::DetectMode(o.quiet), total);
             progress->Update(done);
         });
-        std::ofstream(done_marker) << "ok\n";
+        WriteFileAtomically(done_marker, std::string_view("ok\n"));
     } else {
         std::cerr << "revisit demo: using the cached sequence " << data.string() << '\n';
     }

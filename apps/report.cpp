@@ -1,4 +1,5 @@
 /// `revisit report RUN_DIR` and `revisit inspect RUN_DIR`: the HTML report from a run folder alone.
+#include <algorithm>
 #include <iostream>
 
 #include "commands.hpp"
@@ -28,6 +29,7 @@ int RunReport(const ReportOptions& o) {
 
 int RunInspect(const ReportOptions& o) {
     const RunFolder run = RunFolder::Open(o.run);
+    CheckRunDatabase(run);  // the pictures inspect draws are about the keypoints: no silent pages without them
     const ReportInput input = LoadReportInput(run);
     const ReportConfig config = RunReportConfig(run, {});
     if (o.closure >= 0) {
@@ -47,6 +49,13 @@ int RunInspect(const ReportOptions& o) {
     if (o.maps.size() != 2) {
         std::cerr << "revisit: inspect needs --closure N, --map N or --maps A B\n";
         return 1;
+    }
+    for (const int id : o.maps) {
+        if (std::find(input.map_ids.begin(), input.map_ids.end(), id) == input.map_ids.end()) {
+            std::cerr << "revisit: " << o.run << " has " << input.map_ids.size() << " local maps (0 .. "
+                      << static_cast<int>(input.map_ids.size()) - 1 << "); no map " << id << '\n';
+            return 1;
+        }
     }
     std::cout << WriteMapPairPage(input, o.maps[0], o.maps[1], run.report_dir(), config).string() << '\n';
     return 0;

@@ -2,6 +2,8 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "core/error.hpp"
+#include "pipeline/interrupt.hpp"
 #include "pipeline/run_and_report.hpp"
 #include "run_options.hpp"
 
@@ -14,7 +16,8 @@ struct RunCommandOptions {
     ConfigOptions config;
     std::string poses = "odometry";
     std::string out;
-    std::size_t to = 0;
+    long long from = 0;  ///< signed: a negative index is named as an error, not wrapped around
+    long long to = 0;
     bool has_to = false;
 };
 
@@ -27,13 +30,17 @@ int RunRun(RunCommandOptions& o) {
         o.run.poses = PoseSource::kFile;
         o.run.poses_file = o.poses;
     }
-    if (o.has_to) o.run.to = o.to;
+    if (o.from < 0) throw ConfigError("--from " + std::to_string(o.from) + ": a scan index is 0 or more");
+    if (o.has_to && o.to < 0) throw ConfigError("--to " + std::to_string(o.to) + ": a scan index is 0 or more");
+    o.run.from = static_cast<std::size_t>(o.from);
+    if (o.has_to) o.run.to = static_cast<std::size_t>(o.to);
+    CheckScanRange(o.run, std::nullopt);
     const bool default_out = o.out.empty();
     o.run.out = default_out ? RunFolder::DefaultPath("reports", o.run.dataset) : fs::path(o.out);
     if (!o.run.quiet) std::cerr << "revisit: " << o.run.dataset.string() << " -> " << o.run.out.string() << '\n';
     const RunState state = RunAndReport(o.run, config, std::cerr, std::cout);
     if (default_out) RunFolder::UpdateLatestLink(o.run.out);
-    return state.complete ? 0 : 130;
+    return state.complete && !InterruptRequested() ? 0 : 130;
 }
 }  // namespace
 
@@ -56,10 +63,12 @@ void AddRunCommand(CLI::App& root, Action& action) {
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
     cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its poses) or a KITTI/TUM FILE")->capture_default_str();
     cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI or TUM) for evaluation");
-    cmd->add_option("--from", o->run.from, "first scan index to use");
+    cmd->add_option("--from", o->from, "first scan index to use");
     cmd->add_option("--to", o->to, "last scan index to use (inclusive)")->each([o](const std::string&) { o->has_to = true; });
     cmd->add_flag("--force", o->run.force, "write into an existing non-empty run folder");
     cmd->add_flag("--quiet", o->run.quiet, "no progress output");
+    cmd->add_flag("--allow-truncated", o->run.allow_truncated,
+                  "a damaged or truncated rawlog: use the scans read before the damage (run.json: truncated)");
     cmd->callback([o, &action] { action = [o] { return RunRun(*o); }; });
 }
 

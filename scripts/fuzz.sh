@@ -1,23 +1,62 @@
 #!/usr/bin/env bash
-# Builds the reader fuzz target with clang (libFuzzer + ASan + UBSan) and runs it.
-# Usage: scripts/fuzz.sh [SECONDS]   (default 60). Crashes are saved in build-fuzz/crashes/.
+# libFuzzer on every reader (clang, ASan, UBSan that halts), one target after another.
+# Usage: scripts/fuzz.sh [SECONDS]   each target SECONDS long (default 60); findings in build-fuzz/crashes/
+#        scripts/fuzz.sh --smoke     about 60 s over all targets (the `fuzz_smoke` test); exits 77 (skipped)
+#                                    when clang or its fuzzer runtime is missing
+# FUZZ_KEEP_GOING=1 (long runs): libFuzzer's fork mode goes on after a finding and counts crashes,
+# timeouts and OOMs (the log's last "#N ... oom/timeout/crash" line) instead of stopping at the first.
+# Every run: -timeout=10 (a hang is a finding), -rss_limit_mb=2048 and -malloc_limit_mb=2048 (memory
+# beyond what a small input can justify is a finding). Seeds come from the project's own writers.
 set -euo pipefail
-seconds="${1:-60}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="$root/build-fuzz"
-"$root/scripts/setup-debian.sh" --fuzz
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREVISIT_FUZZ=ON
-cmake --build "$build" --target fuzz_readers -j "$(nproc)"
+build="${REVISIT_FUZZ_BUILD:-$root/build-fuzz}"
+targets=(fuzz_scans fuzz_trajectories fuzz_rawlog fuzz_database fuzz_config fuzz_run_folder)
 
-# Seed corpus: one small valid file per format, prefixed by the byte that selects its reader.
+smoke=0
+if [[ "${1:-}" == "--smoke" ]]; then
+  smoke=1
+  seconds=$((60 / ${#targets[@]}))
+  if ! command -v clang++ > /dev/null || ! compgen -G "/usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a" > /dev/null; then
+    echo "fuzz smoke skipped: clang and libclang-rt-*-dev are not installed (scripts/setup-debian.sh installs them)"
+    exit 77
+  fi
+else
+  seconds="${1:-60}"
+  "$root/scripts/setup-debian.sh" --fuzz
+fi
+
+mkdir -p "$build"
+launcher=()
+if command -v ccache > /dev/null; then launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREVISIT_FUZZ=ON \
+  "${launcher[@]}" > "$build/configure.log"
+cmake --build "$build" --target fuzz_targets -j "${JOBS:-$(nproc)}" > "$build/build.log" || {
+  tail -n 40 "$build/build.log"
+  exit 1
+}
+
 corpus="$build/corpus"
-mkdir -p "$corpus" "$build/crashes"
-seed() { { printf "\\x$(printf %02x "$1")"; cat; } > "$corpus/seed-$1"; }
-printf '\x00\x00\x80\x3f\x00\x00\x00\x40\x00\x00\x40\x40\x00\x00\x00\x3f' | seed 0
-printf 'VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n1 2 3 0.5\n4 5 6 1\n' | seed 1
-printf 'ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n4 5 6\n' | seed 2
-head -c 4096 "/usr/share/mrpt/datasets/localization_demo.rawlog" | seed 3
-printf '1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 1.5 0 1 0 0 0 0 1 0\n' | seed 4
-
-"$build/tests/fuzz_readers" "$corpus" -max_total_time="$seconds" -max_len=8192 -rss_limit_mb=4096 \
-  -artifact_prefix="$build/crashes/"
+rm -rf "$build/seeds"
+"$build/tests/fuzz_seeds" "$build/seeds"
+mkdir -p "$build/crashes"
+status=0
+keep_going=()
+if [[ "${FUZZ_KEEP_GOING:-0}" == 1 ]]; then keep_going=(-fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1); fi
+for target in "${targets[@]}"; do
+  mkdir -p "$corpus/$target"
+  log="$build/$target.log"
+  echo "== $target: ${seconds} s"
+  # UBSan and ASan stop at the first report; libFuzzer saves the input in crashes/.
+  if ! UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=0 \
+      "$build/tests/$target" "$corpus/$target" "$build/seeds/$target" -max_total_time="$seconds" \
+      -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=16384 -print_final_stats=1 \
+      -artifact_prefix="$build/crashes/$target-" "${keep_going[@]}" > "$log" 2>&1; then
+    echo "$target: FINDING (see $log and $build/crashes/)"
+    grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$log" | head -n 8 || true
+    status=1
+  fi
+  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb" "$log" | tr '\n' ' ' || true
+  grep -E "oom/timeout/crash" "$log" | tail -n 1 || true
+  echo
+done
+exit $status

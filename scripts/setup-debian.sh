@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian bookworm packages revisit needs. A no-op when they are all installed.
-# Usage: scripts/setup-debian.sh [--fuzz]   (--fuzz adds clang and its fuzzer runtime)
+# Usage: scripts/setup-debian.sh [--fuzz]   (clang and its fuzzer runtime are always installed)
 set -euo pipefail
 
 packages=(
@@ -10,10 +10,10 @@ packages=(
   libmrpt-maps-dev libmrpt-opengl-dev libmrpt-img-dev mrpt-common libosmesa6-dev
   libgtest-dev libbenchmark-dev
   chromium
+  clang libclang-rt-14-dev ccache
 )
-if [[ "${1:-}" == "--fuzz" ]]; then
-  packages+=(clang libclang-rt-14-dev)
-fi
+# --fuzz is kept for scripts/fuzz.sh; clang and its fuzzer runtime are part of the normal setup, since
+# the test suite's fuzz smoke needs them.
 
 missing=()
 for package in "${packages[@]}"; do

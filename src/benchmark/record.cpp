@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 
 namespace revisit {
@@ -124,9 +125,7 @@ BenchRecord RecordFromJson(const std::string& text, const std::string& source) {
 }
 
 void WriteRecord(const std::filesystem::path& file, const BenchRecord& record) {
-    std::ofstream out(file);
-    out << RecordToJson(record);
-    if (!out) throw DatasetError(file.string(), "cannot write");
+    WriteFileAtomically(file, [&record](std::ostream& out) { out << RecordToJson(record); });
 }
 
 BenchRecord ReadRecord(const std::filesystem::path& file) {

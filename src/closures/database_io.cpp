@@ -7,11 +7,14 @@
 #include <type_traits>
 
 #include "core/error.hpp"
+#include "core/png_size.hpp"
+#include "core/atomic_file.hpp"
 
 namespace revisit {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'V', 'S', 'T', 'C', 'L', 'D', 'B'};
+constexpr std::size_t kHeaderBytes = sizeof(kMagic) + sizeof(std::uint32_t) + sizeof(std::uint64_t);
 
 std::uint64_t Fnv1a(const std::string& bytes) {
     std::uint64_t hash = 1469598103934665603ull;
@@ -44,14 +47,17 @@ class Parser {
         return value;
     }
     void GetBytes(void* data, std::size_t size) {
-        if (size > bytes_.size() - pos_) throw DatasetError(file_, "truncated closure database (payload ends early)");
+        if (size > bytes_.size() - pos_) {
+            throw DatasetError(file_, "truncated closure database (payload ends at byte " + Offset() + ")");
+        }
         std::memcpy(data, bytes_.data() + pos_, size);
         pos_ += size;
     }
     std::uint32_t GetCount(std::size_t element_size) {
         const auto count = Get<std::uint32_t>();
         if (std::size_t(count) * element_size > bytes_.size() - pos_) {
-            throw DatasetError(file_, "corrupt closure database (a count exceeds the file size)");
+            throw DatasetError(file_, "corrupt closure database (the count " + std::to_string(count) + " at byte " +
+                                          Offset() + " exceeds the bytes left)");
         }
         return count;
     }
@@ -61,6 +67,8 @@ class Parser {
         return M;
     }
     bool AtEnd() const { return pos_ == bytes_.size(); }
+    /// Position in the file (the payload starts after the 20-byte header).
+    std::string Offset() const { return std::to_string(pos_ + kHeaderBytes); }
 
   private:
     const std::string& bytes_;
@@ -113,17 +121,16 @@ void SaveDatabase(const ClosureDetector& detector, const std::filesystem::path& 
         w.Put(std::uint32_t(r.image_png.size()));
         w.PutBytes(r.image_png.data(), r.image_png.size());
     }
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    if (!out) throw DatasetError(file, "cannot open for writing");
-    out.write(kMagic, sizeof(kMagic));
     const std::uint32_t version = kDatabaseVersion;
     const std::uint64_t size = w.bytes().size();
     const std::uint64_t checksum = Fnv1a(w.bytes());
-    out.write(reinterpret_cast<const char*>(&version), sizeof(version));
-    out.write(reinterpret_cast<const char*>(&size), sizeof(size));
-    out.write(w.bytes().data(), std::streamsize(size));
-    out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
-    if (!out) throw DatasetError(file, "write failed");
+    WriteFileAtomically(file, [&](std::ostream& out) {
+        out.write(kMagic, sizeof(kMagic));
+        out.write(reinterpret_cast<const char*>(&version), sizeof(version));
+        out.write(reinterpret_cast<const char*>(&size), sizeof(size));
+        out.write(w.bytes().data(), std::streamsize(size));
+        out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
+    });
 }
 
 ClosureDetector LoadDatabase(const std::filesystem::path& file, const ClosureDetectorConfig& config) {
@@ -182,6 +189,14 @@ ClosureDetector LoadDatabase(const std::filesystem::path& file, const ClosureDet
         r.image_png.resize(p.GetCount(1));
         p.GetBytes(r.image_png.data(), r.image_png.size());
         if (r.session < 0 || !(r.resolution > 0.0)) throw DatasetError(file, "corrupt closure database (map record)");
+        if (!r.image_png.empty()) {
+            // The image is decoded later (matching, report pictures): its declared size is checked now.
+            const PngSize png = ReadPngSize(r.image_png.data(), r.image_png.size(), file);
+            CheckPngSize(png, config.density.max_image_side, file);
+            if (int(png.width) != r.cols || int(png.height) != r.rows) {
+                throw DatasetError(file, "corrupt closure database (map " + std::to_string(r.id) + ": image size differs from its record)");
+            }
+        }
         detector.Restore(std::move(r), descriptors);
     }
     if (!p.AtEnd()) throw DatasetError(file, "corrupt closure database (trailing bytes in payload)");

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -202,7 +203,14 @@ void WriteGroundTruthClosures(std::ostream& out, const GtClosures& closures, con
 }
 
 std::optional<GtClosures> ReadGroundTruthClosures(std::istream& in, const std::string& expected_key) {
-    constexpr std::size_t kMaxCount = 500'000'000;  // a corrupt count must not allocate without bound
+    // A corrupt count must not allocate more than the rest of the file can hold: every record is at
+    // least two numbers and their separators (4 bytes).
+    std::size_t bytes_left = std::numeric_limits<std::size_t>::max();
+    if (const auto here = in.tellg(); here >= 0 && in.seekg(0, std::ios::end)) {
+        bytes_left = static_cast<std::size_t>(in.tellg() - here);
+        in.seekg(here);
+    }
+    const std::size_t kMaxCount = bytes_left / 4;
     std::string word, key;
     int version = 0;
     if (!(in >> word >> version) || word != "revisit-gt-closures" || version != 1) return std::nullopt;

@@ -1,6 +1,7 @@
 #include "io/field_layout.hpp"
 
 #include <cstdint>
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -72,11 +73,32 @@ namespace {
 constexpr std::size_t kMaxPoints = 100'000'000;  // a header claiming more is corrupt, not a scan
 }
 
+std::uint64_t BytesLeft(std::istream& in) {
+    const auto here = in.tellg();
+    if (here < 0) return 0;
+    in.seekg(0, std::ios::end);
+    const auto end = in.tellg();
+    in.seekg(here);
+    return end > here ? static_cast<std::uint64_t>(end - here) : 0;
+}
+
 CloudData DecodePointRecords(const std::filesystem::path& file, const FieldLayout& layout, std::size_t num_points,
                              bool binary, std::istream& in) {
     const PointColumns c = FindPointColumns(layout);
     if (c.x < 0 || c.y < 0 || c.z < 0) throw DatasetError(file, "no x, y, z fields");
     if (num_points > kMaxPoints) throw DatasetError(file, "implausible point count " + std::to_string(num_points));
+    // The header's count is checked against the bytes that follow it before anything is allocated:
+    // a binary record is record_size bytes, an ascii record at least one character and one separator
+    // per value.
+    const std::uint64_t offset = static_cast<std::uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
+    const std::uint64_t left = BytesLeft(in);
+    const std::uint64_t min_record = binary ? layout.record_size : 2 * layout.values_per_record;
+    if (num_points > (binary ? left : left + 1) / min_record) {
+        throw DatasetError(file, "header declares " + std::to_string(num_points) + " points, but the " +
+                                     std::to_string(left) + " bytes after the header (from byte " +
+                                     std::to_string(offset) + ") hold at most " +
+                                     std::to_string((binary ? left : left + 1) / min_record));
+    }
     CloudData cloud;
     cloud.has_intensity = c.intensity >= 0;
     cloud.has_time = c.time >= 0;

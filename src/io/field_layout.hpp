@@ -1,6 +1,7 @@
 #pragma once
 /// Per-point record layout shared by the PCD and PLY readers.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <string>
@@ -40,9 +41,13 @@ struct PointColumns {
 };
 PointColumns FindPointColumns(const FieldLayout& layout);
 
+/// Bytes from the stream's position to its end (the position is kept).
+std::uint64_t BytesLeft(std::istream& in);
+
 /// Decodes `num_points` records from `in` (positioned at the first record): whitespace-separated
 /// ascii values, one record per line, or packed little-endian binary. Needs x, y and z fields.
-/// Throws DatasetError naming `file` when fields are missing or the data ends early.
+/// Throws DatasetError naming `file` when fields are missing, the count exceeds what the bytes left
+/// can hold (checked before allocating), or the data ends early.
 CloudData DecodePointRecords(const std::filesystem::path& file, const FieldLayout& layout, std::size_t num_points,
                              bool binary, std::istream& in);
 

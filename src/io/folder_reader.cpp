@@ -24,26 +24,6 @@ std::vector<fs::path> FilesWithExtension(const fs::path& folder, const std::stri
     return files;
 }
 
-/// Reads the `Tr:` line of a KITTI calib.txt (velodyne to left camera), if there is one.
-std::optional<Eigen::Isometry3d> ReadKittiTr(const fs::path& calib) {
-    std::ifstream in(calib);
-    std::string line;
-    for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
-        if (line.rfind("Tr:", 0) != 0) continue;
-        std::istringstream values(line.substr(3));
-        Eigen::Matrix<double, 3, 4> M;
-        for (int i = 0; i < 12; ++i) {
-            if (!(values >> M(i / 4, i % 4))) throw DatasetError(calib, "Tr needs 12 numbers", line_number);
-        }
-        // calib.txt rounds Tr to a few digits: re-orthonormalize so that Tr.inverse() is exact.
-        Eigen::Isometry3d Tr = Eigen::Isometry3d::Identity();
-        Tr.linear() = NearestRotation(M.leftCols<3>());
-        Tr.translation() = M.col(3);
-        return Tr;
-    }
-    return std::nullopt;
-}
-
 /// One scan file per index, with optional reference poses and times resolved up front.
 class FolderReader final : public Reader {
   public:
@@ -117,6 +97,28 @@ fs::path KittiRoot(const fs::path& path) {
 
 }  // namespace
 
+std::optional<Eigen::Isometry3d> ReadKittiTr(const fs::path& calib) {
+    std::ifstream in(calib);
+    std::string line;
+    for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
+        if (line.rfind("Tr:", 0) != 0) continue;
+        std::istringstream values(line.substr(3));
+        Eigen::Matrix<double, 3, 4> M;
+        for (int i = 0; i < 12; ++i) {
+            if (!(values >> M(i / 4, i % 4))) throw DatasetError(calib, "Tr needs 12 numbers", line_number);
+        }
+        // calib.txt rounds Tr to a few digits: re-orthonormalize so that Tr.inverse() is exact.
+        Eigen::Isometry3d Tr = Eigen::Isometry3d::Identity();
+        Tr.linear() = NearestRotation(M.leftCols<3>());
+        if ((Tr.linear() - M.leftCols<3>()).norm() > 1e-2) {
+            throw DatasetError(calib, "Tr's rotation part is not a rotation matrix", line_number);
+        }
+        Tr.translation() = M.col(3);
+        return Tr;
+    }
+    return std::nullopt;
+}
+
 bool IsKittiFolder(const fs::path& path) {
     const fs::path velodyne = KittiRoot(path) / "velodyne";
     return fs::is_directory(velodyne) && !FilesWithExtension(velodyne, ".bin").empty();
@@ -125,7 +127,7 @@ bool IsKittiFolder(const fs::path& path) {
 std::unique_ptr<Reader> OpenKittiFolder(const fs::path& path, const ReaderOptions& options) {
     const fs::path root = KittiRoot(path);
     auto files = FilesWithExtension(root / "velodyne", ".bin");
-    DatasetInfo info{"kitti", path, files.size(), false, {}};
+    DatasetInfo info{"kitti", path, files.size(), false, {}, {}};
     // The official layout keeps ground truth apart: <root>/sequences/NN and <root>/poses/NN.txt.
     const fs::path official = root.parent_path().filename() == "sequences"
                                   ? root.parent_path().parent_path() / "poses" / (root.filename().string() + ".txt")
@@ -158,7 +160,7 @@ std::unique_ptr<Reader> OpenCloudFolder(const fs::path& path, const ReaderOption
     }
     if (!pcd.empty() && !ply.empty()) throw DatasetError(path, "folder mixes .pcd and .ply files; keep one format");
     const bool is_pcd = !pcd.empty();
-    DatasetInfo info{is_pcd ? "pcd" : "ply", path, std::nullopt, false, {}};
+    DatasetInfo info{is_pcd ? "pcd" : "ply", path, std::nullopt, false, {}, {}};
     info.poses_file = FirstExisting({options.poses_file, path / "poses.txt", path / "poses_tum.txt"});
     if (!options.poses_file.empty() && info.poses_file != options.poses_file) {
         throw DatasetError(options.poses_file, "no such poses file");

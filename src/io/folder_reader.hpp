@@ -1,6 +1,9 @@
 #pragma once
 /// Readers for folders of one-file-per-scan datasets: KITTI (velodyne/*.bin) and .pcd / .ply folders.
 #include <memory>
+#include <optional>
+
+#include <Eigen/Geometry>
 
 #include "io/reader.hpp"
 
@@ -8,6 +11,9 @@ namespace revisit {
 
 /// True when `path` looks like a KITTI sequence: it has velodyne/*.bin, or is such a velodyne folder.
 bool IsKittiFolder(const std::filesystem::path& path);
+
+/// The `Tr:` line of a KITTI calib.txt (velodyne to left camera), if there is one; malformed: DatasetError.
+std::optional<Eigen::Isometry3d> ReadKittiTr(const std::filesystem::path& calib);
 
 /// KITTI sequence folder: velodyne/*.bin, optional poses.txt (or the official ../../poses/NN.txt),
 /// calib.txt (Tr: poses converted from camera to LiDAR frame as Tr^-1 * P * Tr) and times.txt.

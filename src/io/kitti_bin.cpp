@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/cloud_files.hpp"
 
@@ -55,10 +56,7 @@ void SaveKittiBin(const std::filesystem::path& file, const Scan& scan) {
         raw[4 * i + 2] = scan.points[i].z();
         raw[4 * i + 3] = scan.has_intensities() ? scan.intensities[i] : 0.f;
     }
-    const FilePtr f(std::fopen(file.c_str(), "wb"));
-    if (!f || std::fwrite(raw.data(), sizeof(float), raw.size(), f.get()) != raw.size()) {
-        throw DatasetError(file, "cannot write");
-    }
+    WriteFileAtomically(file, std::string_view(reinterpret_cast<const char*>(raw.data()), raw.size() * sizeof(float)));
 }
 
 void ApplyKittiVerticalCorrection(std::vector<Eigen::Vector3f>& points) {

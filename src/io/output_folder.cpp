@@ -18,6 +18,27 @@ void PrepareOutputFolder(const fs::path& folder, bool force) {
     if (ec) throw DatasetError(folder, "cannot create folder: " + ec.message());
 }
 
+namespace {
+/// True when `inner` is `outer` or below it (both canonical).
+bool IsWithin(const fs::path& inner, const fs::path& outer) {
+    auto o = outer.begin();
+    for (auto i = inner.begin(); o != outer.end(); ++i, ++o) {
+        if (i == inner.end() || *i != *o) return false;
+    }
+    return true;
+}
+}  // namespace
+
+void RefuseOutputOverInput(const fs::path& input, const fs::path& output) {
+    std::error_code ec;
+    if (!fs::exists(output, ec) || !fs::exists(input, ec)) return;
+    const fs::path in = fs::canonical(input, ec);
+    const fs::path out = ec ? fs::path() : fs::canonical(output, ec);
+    if (fs::equivalent(input, output, ec) || (!in.empty() && !out.empty() && IsWithin(in, out))) {
+        throw DatasetError(output, "is the input " + input.string() + " (or contains it); writing it would destroy the input");
+    }
+}
+
 void PrepareOutputFile(const fs::path& file, bool force) {
     if (file.empty()) throw DatasetError(file, "no output file given");
     if (fs::exists(file) && !force) throw DatasetError(file, "file exists; choose another name or pass --force");

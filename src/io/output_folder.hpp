@@ -7,6 +7,10 @@ namespace revisit {
 /// Creates `folder` (and parents). Throws DatasetError if it exists and is not empty, unless `force`.
 void PrepareOutputFolder(const std::filesystem::path& folder, bool force);
 
+/// Throws DatasetError when writing `output` could destroy `input`: the same file or folder (also
+/// through symbolic or hard links), or a folder that contains the input.
+void RefuseOutputOverInput(const std::filesystem::path& input, const std::filesystem::path& output);
+
 /// Creates the parent folder of `file`. Throws DatasetError if the file exists, unless `force`.
 void PrepareOutputFile(const std::filesystem::path& file, bool force);
 

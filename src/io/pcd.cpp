@@ -1,5 +1,6 @@
 /// PCD v0.7 reader (ascii and binary; binary_compressed is refused with a clear message).
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -53,7 +54,16 @@ CloudData LoadPcd(const std::filesystem::path& file) {
         else if (key == "DATA" && rest.size() == 1) data = rest[0];
         else if (key != "VERSION" && key != "VIEWPOINT") throw DatasetError(file, "PCD header: unexpected line", line_number);
     }
+    // WIDTH * HEIGHT must not wrap (2^32 * 2^32 is 0 in 64 bits) and must agree with POINTS.
+    if (height != 0 && width > std::numeric_limits<std::size_t>::max() / height) {
+        throw DatasetError(file, "PCD header: WIDTH " + std::to_string(width) + " x HEIGHT " + std::to_string(height) +
+                                     " overflows");
+    }
     if (!have_points) num_points = width * height;
+    else if (width != 0 && num_points != width * height) {
+        throw DatasetError(file, "PCD header: POINTS " + std::to_string(num_points) + " is not WIDTH x HEIGHT = " +
+                                     std::to_string(width * height));
+    }
     if (counts.empty()) counts.assign(names.size(), 1);
     if (names.empty() || sizes.size() != names.size() || types.size() != names.size() || counts.size() != names.size()) {
         throw DatasetError(file, "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");

@@ -1,8 +1,10 @@
 /// PLY reader (ascii and binary_little_endian; the vertex element only) and binary writer.
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/cloud_files.hpp"
 #include "io/field_layout.hpp"
@@ -28,6 +30,7 @@ bool PlyType(const std::string& name, char& kind, std::size_t& size) {
 CloudData LoadPly(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw DatasetError(file, "cannot open for reading");
+    const std::uint64_t file_bytes = BytesLeft(in);
     std::string line;
     if (!std::getline(in, line) || line.rfind("ply", 0) != 0) throw DatasetError(file, "not a PLY file (no 'ply' magic)");
     std::string format;
@@ -46,6 +49,12 @@ CloudData LoadPly(const std::filesystem::path& file) {
             std::size_t count = 0;
             tokens >> element >> count;
             if (!tokens) throw DatasetError(file, "PLY header: bad element line", line_number);
+            // Every record takes at least one byte: a larger count is damage, refused before it is used.
+            if (count > file_bytes) {
+                throw DatasetError(file, "PLY header: element '" + element + "' declares " + std::to_string(count) +
+                                             " records, more than the file's " + std::to_string(file_bytes) +
+                                             " bytes can hold", line_number);
+            }
             if (element == "vertex") { num_vertices = count; vertex_seen = true; }
             else if (!vertex_seen) lines_before_vertices += count;
         } else if (key == "property" && element == "vertex") {
@@ -67,24 +76,28 @@ CloudData LoadPly(const std::filesystem::path& file) {
     }
     if (lines_before_vertices > 0) {
         if (binary) throw DatasetError(file, "PLY elements before the vertex element are not supported in binary files");
-        for (std::size_t i = 0; i < lines_before_vertices; ++i) std::getline(in, line);
+        for (std::size_t i = 0; i < lines_before_vertices; ++i) {
+            if (!std::getline(in, line)) {
+                throw DatasetError(file, "data ends after " + std::to_string(i) + " of the " +
+                                             std::to_string(lines_before_vertices) + " records before the vertices");
+            }
+        }
     }
     return DecodePointRecords(file, layout, num_vertices, binary, in);
 }
 
 void SavePly(const std::filesystem::path& file, const std::vector<Eigen::Vector3f>& points,
              const std::vector<float>& intensities) {
-    std::ofstream out(file, std::ios::binary);
-    if (!out) throw DatasetError(file, "cannot open for writing");
     const bool with_intensity = intensities.size() == points.size() && !points.empty();
-    out << "ply\nformat binary_little_endian 1.0\ncomment written by revisit\nelement vertex " << points.size()
-        << "\nproperty float x\nproperty float y\nproperty float z\n"
-        << (with_intensity ? "property float intensity\n" : "") << "end_header\n";
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        out.write(reinterpret_cast<const char*>(points[i].data()), 3 * sizeof(float));
-        if (with_intensity) out.write(reinterpret_cast<const char*>(&intensities[i]), sizeof(float));
-    }
-    if (!out) throw DatasetError(file, "write failed");
+    WriteFileAtomically(file, [&](std::ostream& out) {
+        out << "ply\nformat binary_little_endian 1.0\ncomment written by revisit\nelement vertex " << points.size()
+            << "\nproperty float x\nproperty float y\nproperty float z\n"
+            << (with_intensity ? "property float intensity\n" : "") << "end_header\n";
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            out.write(reinterpret_cast<const char*>(points[i].data()), 3 * sizeof(float));
+            if (with_intensity) out.write(reinterpret_cast<const char*>(&intensities[i]), sizeof(float));
+        }
+    });
 }
 
 }  // namespace revisit

@@ -1,6 +1,5 @@
 #include "io/rawlog_reader.hpp"
 
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -13,14 +12,18 @@
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
-#include <mrpt/obs/CRawlog.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
 #include <deque>
+#include <sstream>
+#include <limits>
 
 #include "core/error.hpp"
+#include "io/allocation_budget.hpp"
 #include "io/rawlog_scan.hpp"
+#include "io/rawlog_stream.hpp"
 
 namespace revisit {
 namespace {
@@ -28,15 +31,23 @@ namespace {
 class RawlogReader final : public Reader {
   public:
     RawlogReader(const std::filesystem::path& file, const ReaderOptions& options)
-        : file_(file), options_(options), label_filter_(options.sensor_label) {
+        : file_(file), options_(options), label_filter_(options.sensor_label), stream_(file) {
         info_.format = "rawlog";
         info_.path = file;
-        if (!stream_.open(file.string())) throw DatasetError(file, "cannot open rawlog");
     }
 
     std::optional<Scan> Next() override {
         while (pending_.empty()) {
-            if (!ReadEntry()) return std::nullopt;
+            if (done_) return std::nullopt;
+            try {
+                if (!ReadEntry()) return std::nullopt;
+            } catch (const DatasetError& e) {
+                if (!options_.allow_truncated) throw;
+                // --allow-truncated: keep what was read, and say so.
+                done_ = true;
+                info_.truncated = e.what();
+                pending_.clear();  // an entry cut in the middle gives no scan
+            }
         }
         Scan scan = std::move(pending_.front());
         pending_.pop_front();
@@ -49,38 +60,64 @@ class RawlogReader final : public Reader {
     const DatasetInfo& Info() const override { return info_; }
 
   private:
-    /// Reads one rawlog entry into pending_; false at the end of the file.
+    /// Reads one rawlog object (an action collection, a sensory frame or an observation) into
+    /// pending_; false at the clean end of the file. Damage throws DatasetError saying where reading
+    /// stopped and how many scans were read.
     bool ReadEntry() {
-        mrpt::obs::CActionCollection::Ptr actions;
-        mrpt::obs::CSensoryFrame::Ptr frame;
-        mrpt::obs::CObservation::Ptr observation;
-        bool ok = false;
+        mrpt::serialization::CSerializable::Ptr object;
         try {
-            ok = mrpt::obs::CRawlog::getActionObservationPairOrObservation(archive_, actions, frame, observation,
-                                                                           entry_);
+            if (stream_.AtEnd()) return false;
+            // What one object may allocate is bounded by what the rest of the file can hold: MRPT
+            // allocates what a size field says before it reads the data (AllocationBudget).
+            const std::uint64_t left = stream_.MaxBytesLeft();
+            const AllocationBudget budget(static_cast<std::size_t>(
+                std::min<std::uint64_t>(2 * left + kAllocationSlack, std::numeric_limits<std::size_t>::max() / 2)));
+            object = archive_.ReadObject();
+        } catch (const DatasetError& e) {
+            Stop(stream_.error().empty() ? e.what() : stream_.error());  // gzip, CRC or read error
+        } catch (const std::bad_alloc&) {
+            Stop("an object declares more data than the rest of the file holds");
         } catch (const std::exception& e) {
-            throw DatasetError(file_, "corrupt rawlog after entry " + std::to_string(entry_) + ": " +
-                                          FirstLine(e.what()));
+            Stop(stream_.error().empty() ? "corrupt object: " + MrptMessage(e.what()) : stream_.error());
         }
-        if (!ok) {
-            // MRPT reports both the end of the file and a decoding failure as false; a gzip stream that
-            // stops before its end marker, or trailing garbage, shows up as unread bytes.
-            if (stream_.getPosition() < stream_.getTotalBytesCount() && entry_ == 0) {
-                throw DatasetError(file_, "not a readable MRPT rawlog");
-            }
-            return false;
-        }
-        if (actions) {
+        ++entry_;
+        if (const auto actions = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(object)) {
             for (const auto& action : *actions) HandleAction(*action);
-        }
-        if (frame) {
+        } else if (const auto frame = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(object)) {
             for (const auto& obs : *frame) HandleObservation(obs);
+        } else if (const auto observation = std::dynamic_pointer_cast<mrpt::obs::CObservation>(object)) {
+            HandleObservation(observation);
+        } else if (object) {
+            stats_.skipped_classes[object->GetRuntimeClass()->className]++;
         }
-        if (observation) HandleObservation(observation);
         return true;
     }
 
-    static std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+    [[noreturn]] void Stop(const std::string& problem) const {
+        const std::string where = stream_.is_gzip() ? "decompressed byte " + std::to_string(stream_.getPosition()) + ", "
+                                                    : std::string();
+        throw DatasetError(file_, "damaged rawlog: " + problem + "; reading stopped in object " + std::to_string(entry_) +
+                                      " (" + where + "file byte " + std::to_string(stream_.file_position()) + " of " +
+                                      std::to_string(stream_.getTotalBytesCount()) + ") after " +
+                                      std::to_string(stats_.scans + pending_.size()) + " scans");
+    }
+
+    /// MRPT nests exceptions, each with a banner and a backtrace: the innermost message says what went
+    /// wrong, the outermost typed object where.
+    static std::string MrptMessage(const std::string& text) {
+        std::istringstream lines(text);
+        std::string line, message, object;
+        const std::string kPrefix = "Message:", kParsing = "Exception while parsing typed object '";
+        while (std::getline(lines, line)) {
+            if (line.rfind(kPrefix, 0) != 0) continue;
+            message = line.substr(line.find_first_not_of(' ', kPrefix.size()));
+            if (object.empty() && message.rfind(kParsing, 0) == 0) {
+                object = message.substr(kParsing.size(), message.find('\'', kParsing.size()) - kParsing.size());
+            }
+        }
+        if (message.empty()) message = text.substr(0, text.find('\n'));
+        return object.empty() ? message : message + " (in " + object + ")";
+    }
 
     void HandleAction(const mrpt::obs::CAction& action) {
         if (const auto* m2 = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&action)) {
@@ -125,8 +162,10 @@ class RawlogReader final : public Reader {
     ReaderOptions options_;
     std::string label_filter_;
     DatasetInfo info_;
-    mrpt::io::CFileGZInputStream stream_;
-    mrpt::serialization::CArchiveStreamBase<mrpt::io::CFileGZInputStream> archive_{stream_};
+    static constexpr std::uint64_t kAllocationSlack = 256ull << 20;  ///< [bytes] beyond 2x the data left
+    RawlogInputStream stream_;
+    mrpt::serialization::CArchiveStreamBase<RawlogInputStream> archive_{stream_};
+    bool done_ = false;
     std::size_t entry_ = 0;
     std::optional<Eigen::Isometry3d> T_odom_;
     std::optional<Eigen::Isometry3d> T_reference_;

@@ -10,6 +10,8 @@
 #include <mrpt/system/datetime.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "io/rotating_scan.hpp"
 
@@ -97,18 +99,23 @@ std::optional<Scan> PointsOf(const mrpt::obs::CObservation& obs, ReadStats& stat
         beams.ranges.assign(n, 0.f);
         beams.aperture = aperture;
         beams.stated_aperture = laser->aperture;
+        // MRPT reads the flag as a raw byte: a damaged file can hold a value no bool has (found by fuzz_rawlog).
+        std::uint8_t right_to_left_byte = 0;
+        std::memcpy(&right_to_left_byte, &laser->rightToLeft, 1);
+        const bool right_to_left = right_to_left_byte != 0;
         for (std::size_t i = 0; i < n; ++i) {
             if (!laser->getScanRangeValidity(i)) continue;
             const float range = laser->getScanRange(i);
-            if (std::isfinite(range)) beams.ranges[laser->rightToLeft ? i : n - 1 - i] = range;
+            if (std::isfinite(range)) beams.ranges[right_to_left ? i : n - 1 - i] = range;
             // As CObservation2DRangeScan::getScanAngle, with the aperture possibly overridden.
             const double from_right = -aperture / 2.0 + step * static_cast<double>(i);
-            const float angle = static_cast<float>(laser->rightToLeft ? from_right : -from_right);
-            if (!std::isfinite(range)) {
+            const float angle = static_cast<float>(right_to_left ? from_right : -from_right);
+            const Eigen::Vector3f point(range * std::cos(angle), range * std::sin(angle), 0.f);
+            if (!point.allFinite()) {  // a NaN range, or a damaged aperture
                 stats.non_finite_points++;
                 continue;
             }
-            scan.points.emplace_back(range * std::cos(angle), range * std::sin(angle), 0.f);
+            scan.points.push_back(point);
         }
         scan.planar_beams = std::move(beams);
         return scan;

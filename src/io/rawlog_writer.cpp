@@ -1,6 +1,5 @@
 /// MRPT rawlog writer (observation-only layout).
-#include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
@@ -9,8 +8,14 @@
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include <cmath>
+#include <zlib.h>
 
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/output_folder.hpp"
 #include "io/rawlog_scan.hpp"
@@ -26,25 +31,21 @@ class RawlogWriter final : public DatasetWriter {
     RawlogWriter(const std::filesystem::path& file, const WriterOptions& options, bool force)
         : file_(file), options_(options) {
         PrepareOutputFile(file, force);
-        if (IsGzipName(file)) {
-            auto gz = std::make_unique<mrpt::io::CFileGZOutputStream>();
-            if (!gz->open(file.string(), 1)) throw DatasetError(file, "cannot open for writing");
-            stream_ = std::move(gz);
-        } else {
-            auto plain = std::make_unique<mrpt::io::CFileOutputStream>();
-            if (!plain->open(file.string())) throw DatasetError(file, "cannot open for writing");
-            stream_ = std::move(plain);
-        }
-        archive_ = std::make_unique<mrpt::serialization::CArchiveStreamBase<mrpt::io::CStream>>(*stream_);
+        // Objects are serialized in memory and written through zlib ourselves, so that every write and
+        // the final close are checked (a full disk names the file) and only a complete rawlog is
+        // renamed over `file` (core/atomic_file.hpp).
+        temporary_.emplace(file);
+        out_ = gzopen(temporary_->path().c_str(), IsGzipName(file) ? "wb1" : "wbT");
+        if (!out_) throw DatasetError(file, "cannot open for writing");
     }
     ~RawlogWriter() override {
-        try {
-            Finish();
-        } catch (...) {  // a destructor must not throw; Finish() reports errors when called explicitly
-        }
+        if (out_) gzclose(out_);  // without Finish(): abandoned, the temporary is removed by temporary_
     }
+    RawlogWriter(const RawlogWriter&) = delete;
+    RawlogWriter& operator=(const RawlogWriter&) = delete;
 
     void Write(const Scan& scan) override {
+        if (!out_) throw DatasetError(file_, "writer already finished");
         const auto stamp = mrpt::Clock::fromDouble(scan.timestamp);
         if (scan.T_odom_sensor && options_.write_odometry) WriteOdometry(*scan.T_odom_sensor, stamp);
         if (scan.T_world_sensor) {
@@ -52,36 +53,54 @@ class RawlogWriter final : public DatasetWriter {
             gt->sensorLabel = "GROUND_TRUTH";
             gt->timestamp = stamp;
             gt->pose.mean = ToCPose3D(*scan.T_world_sensor);
-            *archive_ << *gt;
+            Append(*gt);
         }
         if (options_.planar_as_range_scan) {
-            *archive_ << *MakeRangeScan(scan, stamp);
+            Append(*MakeRangeScan(scan, stamp));
         } else {
-            *archive_ << *MakePointCloud(scan, stamp);
+            Append(*MakePointCloud(scan, stamp));
         }
     }
 
     void Finish() override {
-        if (!stream_) return;
-        archive_.reset();
-        stream_.reset();
+        if (!out_) return;
+        gzFile out = out_;
+        out_ = nullptr;
+        int errnum = Z_OK;
+        const std::string error = gzerror(out, &errnum);
+        if (gzclose(out) != Z_OK || errnum != Z_OK) {
+            throw DatasetError(file_, "cannot write: " + (errnum != Z_OK ? error : std::string(std::strerror(errno))));
+        }
+        temporary_->Commit();
     }
 
   private:
+    void Append(const mrpt::serialization::CSerializable& object) {
+        mrpt::io::CMemoryStream buffer;
+        auto archive = mrpt::serialization::archiveFrom(buffer);
+        archive << object;
+        const auto size = static_cast<unsigned>(buffer.getTotalBytesCount());
+        if (size > 0 && gzwrite(out_, buffer.getRawBufferData(), size) != static_cast<int>(size)) {
+            int errnum = Z_OK;
+            const char* message = gzerror(out_, &errnum);
+            throw DatasetError(file_, std::string("cannot write: ") + (errnum == Z_ERRNO ? std::strerror(errno) : message));
+        }
+    }
+
     void WriteOdometry(const Eigen::Isometry3d& T_odom, mrpt::Clock::time_point stamp) {
         if (options_.planar_as_range_scan) {  // 2D robots: the classic wheel-odometry observation
             auto odo = mrpt::obs::CObservationOdometry::Create();
             odo->sensorLabel = "ODOMETRY";
             odo->timestamp = stamp;
             odo->odometry = mrpt::poses::CPose2D(ToCPose3D(T_odom));
-            *archive_ << *odo;
+            Append(*odo);
             return;
         }
         auto pose = mrpt::obs::CObservationRobotPose::Create();
         pose->sensorLabel = "ODOMETRY";
         pose->timestamp = stamp;
         pose->pose.mean = ToCPose3D(T_odom);
-        *archive_ << *pose;
+        Append(*pose);
     }
 
     static mrpt::obs::CObservationPointCloud::Ptr MakePointCloud(const Scan& scan, mrpt::Clock::time_point stamp) {
@@ -129,8 +148,8 @@ class RawlogWriter final : public DatasetWriter {
 
     std::filesystem::path file_;
     WriterOptions options_;
-    std::unique_ptr<mrpt::io::CStream> stream_;
-    std::unique_ptr<mrpt::serialization::CArchiveStreamBase<mrpt::io::CStream>> archive_;
+    std::optional<TemporaryPath> temporary_;  ///< removed unless Finish() completes
+    gzFile out_ = nullptr;
 };
 
 }  // namespace

@@ -19,6 +19,9 @@ struct ReaderOptions {
     /// Some converted logs store a wrong aperture, e.g. the radish intel.rawlog says 90 deg for its
     /// 180-beam, 180-degree SICK scans, which bends every scan.
     double laser_aperture = 0.0;
+    /// Rawlogs: a damaged or truncated file ends the sequence where reading stopped (DatasetInfo::truncated
+    /// says why) instead of an error.
+    bool allow_truncated = false;
 };
 
 struct DatasetInfo {
@@ -27,6 +30,7 @@ struct DatasetInfo {
     std::optional<std::size_t> num_scans;  ///< known up front for folders; rawlogs count while reading
     bool has_reference_poses = false;      ///< known up front (folders); rawlogs: after reading
     std::filesystem::path poses_file;      ///< where reference poses came from, if any
+    std::string truncated;                 ///< with allow_truncated: why reading stopped early (empty: it did not)
 };
 
 /// What a reader dropped or skipped, so the user can be told once at the end.

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/se3.hpp"
 
@@ -21,11 +22,13 @@ std::ifstream OpenText(const std::filesystem::path& file) {
     return in;
 }
 
-std::ofstream OpenOutput(const std::filesystem::path& file) {
-    std::ofstream out(file);
-    if (!out) throw DatasetError(file, "cannot open for writing");
-    out << std::setprecision(9) << std::fixed;
-    return out;
+/// Formats the whole file in memory, then writes it all or nothing (core/atomic_file.hpp).
+template <typename Fill>
+void WriteText(const std::filesystem::path& file, Fill fill) {
+    WriteFileAtomically(file, [&fill](std::ostream& out) {
+        out << std::setprecision(9) << std::fixed;
+        fill(out);
+    });
 }
 
 /// Parses all numbers of a line; false if any token is not a finite number.
@@ -120,41 +123,48 @@ Trajectory ReadPoses(const std::filesystem::path& file) {
 
 std::vector<double> ReadTimes(const std::filesystem::path& file) {
     std::vector<double> times;
-    ForEachDataLine(file, 1, "time", [&](const std::vector<double>& v, std::size_t) { times.push_back(v[0]); });
+    ForEachDataLine(file, 1, "time", [&](const std::vector<double>& v, std::size_t line_number) {
+        // Every later stage pairs scans by time: a step backwards is damage, named where it is.
+        if (!times.empty() && v[0] < times.back()) {
+            throw DatasetError(file, "time goes backwards (" + std::to_string(v[0]) + " s after " +
+                                         std::to_string(times.back()) + " s)", line_number);
+        }
+        times.push_back(v[0]);
+    });
     return times;
 }
 
 void WriteKittiPoses(const std::filesystem::path& file, const Poses& poses) {
-    auto out = OpenOutput(file);
-    for (const auto& T : poses) {
-        const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
-        for (int r = 0; r < 3; ++r) {
-            for (int c = 0; c < 4; ++c) out << (r + c == 0 ? "" : " ") << M(r, c);
+    WriteText(file, [&poses](std::ostream& out) {
+        for (const auto& T : poses) {
+            const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
+            for (int r = 0; r < 3; ++r) {
+                for (int c = 0; c < 4; ++c) out << (r + c == 0 ? "" : " ") << M(r, c);
+            }
+            out << '\n';
         }
-        out << '\n';
-    }
-    if (!out) throw DatasetError(file, "write failed");
+    });
 }
 
 void WriteTumPoses(const std::filesystem::path& file, const Trajectory& trajectory) {
     if (!trajectory.has_timestamps() && !trajectory.empty()) {
         throw DatasetError(file, "TUM output needs one timestamp per pose");
     }
-    auto out = OpenOutput(file);
-    for (std::size_t i = 0; i < trajectory.size(); ++i) {
-        const auto& T = trajectory.poses[i];
-        const Eigen::Quaterniond q(T.linear());
-        const Eigen::Vector3d t = T.translation();
-        out << trajectory.timestamps[i] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
-            << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
-    }
-    if (!out) throw DatasetError(file, "write failed");
+    WriteText(file, [&trajectory](std::ostream& out) {
+        for (std::size_t i = 0; i < trajectory.size(); ++i) {
+            const auto& T = trajectory.poses[i];
+            const Eigen::Quaterniond q(T.linear());
+            const Eigen::Vector3d t = T.translation();
+            out << trajectory.timestamps[i] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
+                << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+        }
+    });
 }
 
 void WriteTimes(const std::filesystem::path& file, const std::vector<double>& timestamps) {
-    auto out = OpenOutput(file);
-    for (const double t : timestamps) out << t << '\n';
-    if (!out) throw DatasetError(file, "write failed");
+    WriteText(file, [&timestamps](std::ostream& out) {
+        for (const double t : timestamps) out << t << '\n';
+    });
 }
 
 std::vector<long> AssociateByTime(const std::vector<double>& trajectory_times, const std::vector<double>& query_times,

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/cloud_files.hpp"
 #include "io/output_folder.hpp"
@@ -19,12 +20,7 @@ class KittiWriter final : public DatasetWriter {
         PrepareOutputFolder(folder, force);
         fs::create_directories(folder / "velodyne");
     }
-    ~KittiWriter() override {
-        try {
-            Finish();
-        } catch (...) {  // a destructor must not throw; Finish() reports errors when called explicitly
-        }
-    }
+    ~KittiWriter() override = default;  // without Finish(): no times.txt, so a partial folder is not taken as complete
 
     void Write(const Scan& scan) override {
         std::ostringstream name;
@@ -40,9 +36,7 @@ class KittiWriter final : public DatasetWriter {
         WriteTimes(folder_ / "times.txt", times_);
         // Partial ground truth cannot be aligned with the scans by the reader: all or nothing.
         if (!poses_.empty() && poses_.size() == count_) WriteKittiPoses(folder_ / "poses.txt", poses_);
-        std::ofstream calib(folder_ / "calib.txt");
-        calib << "Tr: 1 0 0 0 0 1 0 0 0 0 1 0\n";
-        if (!calib) throw DatasetError(folder_ / "calib.txt", "write failed");
+        WriteFileAtomically(folder_ / "calib.txt", std::string_view("Tr: 1 0 0 0 0 1 0 0 0 0 1 0\n"));
     }
 
   private:

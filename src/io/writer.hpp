@@ -25,7 +25,9 @@ class DatasetWriter {
   public:
     virtual ~DatasetWriter() = default;
     virtual void Write(const Scan& scan) = 0;
-    /// Writes what is kept until the end (poses.txt, times.txt) and closes files. Called by the destructor too.
+    /// Writes what is kept until the end (poses.txt, times.txt) and closes files. Only a finished output
+    /// is complete: a writer destroyed without Finish() (an error while reading) leaves no rawlog and
+    /// no times.txt/poses.txt/calib.txt under the final names.
     virtual void Finish() = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -152,6 +153,12 @@ void ConfigSchema::Apply(const YAML::Node& root, const std::string& source) {
 }
 
 void ConfigSchema::ApplyFile(const std::string& file) {
+    // A folder opens as a stream and fails later with the C++ library's words: named here instead.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) {
+        throw ConfigError(file + ": " + (std::filesystem::is_directory(file, ec) ? "is a folder, not a config file"
+                                                                                : "cannot open config file"));
+    }
     YAML::Node root;
     try {
         root = YAML::LoadFile(file);
@@ -159,8 +166,14 @@ void ConfigSchema::ApplyFile(const std::string& file) {
         throw ConfigError(file + ": cannot open config file");
     } catch (const YAML::Exception& e) {
         throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) + ": invalid YAML: " + e.msg);
+    } catch (const std::exception& e) {
+        throw ConfigError(file + ": cannot read config file: " + e.what());
     }
-    Apply(root, file);
+    try {
+        Apply(root, file);
+    } catch (const YAML::Exception& e) {  // e.g. a key that is a list: the schema walk cannot name it
+        throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) + ": unexpected YAML: " + e.msg);
+    }
 }
 
 void ConfigSchema::ApplyOverride(const std::string& assignment) {

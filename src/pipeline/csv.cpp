@@ -1,6 +1,9 @@
 #include "pipeline/csv.hpp"
 
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -92,11 +95,29 @@ double CsvTable::Number(std::size_t row, const std::string& column) const {
     if (end == text.c_str() || *end != '\0') {
         throw DatasetError(file_, "column '" + column + "': not a number: '" + text + "'", row + 2);
     }
+    // The run folder never holds NaN or infinity: one is damage, named before it reaches a solver.
+    if (!std::isfinite(value)) throw DatasetError(file_, "column '" + column + "': not finite: '" + text + "'", row + 2);
     return value;
 }
 
 long long CsvTable::Integer(std::size_t row, const std::string& column) const {
-    return static_cast<long long>(Number(row, column));
+    const std::string& text = Text(row, column);
+    char* end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (end == text.c_str() || *end != '\0' || errno == ERANGE) {
+        throw DatasetError(file_, "column '" + column + "': not an integer: '" + text + "'", row + 2);
+    }
+    return value;
+}
+
+std::size_t CsvTable::Index(std::size_t row, const std::string& column, std::size_t end) const {
+    const long long value = Integer(row, column);
+    if (value < 0 || static_cast<unsigned long long>(value) >= end) {
+        throw DatasetError(file_, "column '" + column + "': " + std::to_string(value) + " is outside 0 .. " +
+                                      std::to_string(end == 0 ? 0 : end - 1), row + 2);
+    }
+    return static_cast<std::size_t>(value);
 }
 
 Eigen::Isometry3d CsvTable::Pose(std::size_t row, const std::string& prefix) const {
@@ -105,6 +126,10 @@ Eigen::Isometry3d CsvTable::Pose(std::size_t row, const std::string& prefix) con
     for (int i = 0; i < 12; ++i) M(i / 4, i % 4) = Number(row, names[i]);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = NearestRotation(M.leftCols<3>());
+    // Written with 9 digits: a rotation part farther than rounding from a rotation is damage.
+    if ((T.linear() - M.leftCols<3>()).norm() > 1e-2) {
+        throw DatasetError(file_, "columns '" + prefix + "_*': not a rotation matrix", row + 2);
+    }
     T.translation() = M.col(3);
     return T;
 }

@@ -35,9 +35,14 @@ class CsvTable {
     static CsvTable Read(const std::filesystem::path& file);
     std::size_t size() const { return rows_.size(); }
     const std::string& Text(std::size_t row, const std::string& column) const;
+    /// A finite number; NaN, infinity or text is a DatasetError naming the file, line and column.
     double Number(std::size_t row, const std::string& column) const;
     long long Integer(std::size_t row, const std::string& column) const;
+    /// An integer in [0, end), e.g. a scan index.
+    std::size_t Index(std::size_t row, const std::string& column, std::size_t end) const;
+    /// 12 columns prefix_00 .. prefix_23; a rotation part that is not a rotation is an error.
     Eigen::Isometry3d Pose(std::size_t row, const std::string& prefix) const;
+    const std::filesystem::path& file() const { return file_; }
 
   private:
     std::filesystem::path file_;

@@ -1,4 +1,5 @@
 #include "pipeline/evaluate.hpp"
+#include "core/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -28,7 +29,8 @@ DatasetPass ReadDatasetPass(const RunState& state, const RunOptions& options, co
     const bool need_scan_context = config.output.scan_context;
     if (cached) pass.ground_truth = *cached;
     if (cached && !need_scan_context) return pass;
-    const ReaderOptions reader_options = MakeReaderOptions(config.input);
+    ReaderOptions reader_options = MakeReaderOptions(config.input);
+    reader_options.allow_truncated = options.allow_truncated;  // the same scans the run read
     auto reader = OpenDataset(options.dataset, reader_options);
     GroundTruthBuilder builder(state.reference, config.ground_truth);
     Progress progress(log, Progress::DetectMode(options.quiet), state.reference.size(), "scans (evaluation)");
@@ -144,13 +146,12 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
                        {"map_recall", e.map_recall.recall}}},
         {"trajectory", {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}}}};
     metrics.update(verification);
-    std::ofstream(run.metrics_json()) << std::setw(2) << metrics << '\n';
+    WriteFileAtomically(run.metrics_json(), [&metrics](std::ostream& out) { out << std::setw(2) << metrics << '\n'; });
     for (const auto& [method, sweep] : e.sweeps) {
-        std::ofstream csv(run.root() / ("pr_curve_" + method + ".csv"));
-        WritePrCurveCsv(csv, sweep);
+        WriteFileAtomically(run.root() / ("pr_curve_" + method + ".csv"),
+                            [&sweep = sweep](std::ostream& out) { WritePrCurveCsv(out, sweep); });
     }
-    std::ofstream table(run.root() / "comparison.md");
-    WriteComparisonTable(table, e.methods);
+    WriteFileAtomically(run.root() / "comparison.md", [&e](std::ostream& out) { WriteComparisonTable(out, e.methods); });
 }
 
 }  // namespace
@@ -165,8 +166,7 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     const auto cached = ReadCache(cache_file, key);
     const DatasetPass pass = ReadDatasetPass(state, options, config, cached, log);
     if (!cached) {
-        std::ofstream out(cache_file);
-        WriteGroundTruthClosures(out, pass.ground_truth, key);
+        WriteFileAtomically(cache_file, [&](std::ostream& out) { WriteGroundTruthClosures(out, pass.ground_truth, key); });
     }
     const auto& gt = pass.ground_truth;
 

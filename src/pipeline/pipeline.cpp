@@ -9,6 +9,7 @@
 #include <iomanip>
 
 #include "closures/database_io.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
@@ -48,12 +49,30 @@ class ReferenceSource {
         if (!file.empty()) trajectory_ = ReadPoses(file);
     }
     bool active() const { return !file_.empty(); }
-    std::optional<Eigen::Isometry3d> At(std::size_t index, double timestamp) const {
+    /// KITTI files pair by index: their pose count must be the dataset's scan count (when known up front).
+    void CheckCount(std::optional<std::size_t> num_scans) const {
+        if (active() && !trajectory_.has_timestamps() && num_scans && trajectory_.size() != *num_scans) {
+            throw DatasetError(file_, "--gt has " + std::to_string(trajectory_.size()) + " poses for " +
+                                          std::to_string(*num_scans) + " scans (KITTI poses pair with scans by index)");
+        }
+    }
+    /// The scan's reference pose; a scan the file does not cover is an error naming it, never a
+    /// silently dropped evaluation.
+    Eigen::Isometry3d At(std::size_t index, double timestamp) const {
         if (trajectory_.has_timestamps()) {
             const long i = AssociateByTime(trajectory_.timestamps, {timestamp}, kMaxTimeDifference).front();
-            return i < 0 ? std::nullopt : std::optional<Eigen::Isometry3d>(trajectory_.poses[i]);
+            if (i < 0) {
+                throw DatasetError(file_, "--gt (TUM, matched by time stamp) has no pose within " +
+                                              std::to_string(kMaxTimeDifference) + " s of scan " + std::to_string(index) +
+                                              " (t = " + std::to_string(timestamp) + " s)");
+            }
+            return trajectory_.poses[i];
         }
-        return index < trajectory_.size() ? std::optional<Eigen::Isometry3d>(trajectory_.poses[index]) : std::nullopt;
+        if (index >= trajectory_.size()) {
+            throw DatasetError(file_, "--gt has " + std::to_string(trajectory_.size()) + " poses; scan " +
+                                          std::to_string(index) + " has none (KITTI poses pair with scans by index)");
+        }
+        return trajectory_.poses[index];
     }
 
   private:
@@ -69,18 +88,30 @@ std::vector<Eigen::Vector3f> ToFloat(const std::vector<Eigen::Vector3d>& points)
 }
 
 void WriteBytes(const fs::path& file, const std::vector<std::uint8_t>& bytes) {
-    std::ofstream out(file, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    WriteFileAtomically(file, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace
+
+void CheckScanRange(const RunOptions& options, std::optional<std::size_t> num_scans) {
+    if (options.to && *options.to < options.from) {
+        throw ConfigError("--from " + std::to_string(options.from) + " --to " + std::to_string(*options.to) +
+                          ": an empty range (--to is the last scan, inclusive, and must be >= --from)");
+    }
+    if (num_scans && options.from >= *num_scans) {
+        throw DatasetError(options.dataset, "--from " + std::to_string(options.from) + " is past the end: the dataset has " +
+                                                std::to_string(*num_scans) + " scans (0 .. " +
+                                                std::to_string(*num_scans == 0 ? 0 : *num_scans - 1) + ")");
+    }
+}
 
 void WriteRunOptions(const RunFolder& run, const RunOptions& o) {
     nlohmann::json j = {{"dataset", fs::absolute(o.dataset).string()}, {"poses", PoseSourceName(o.poses)},
                         {"poses_file", o.poses_file.empty() ? "" : fs::absolute(o.poses_file).string()},
                         {"gt_file", o.gt_file.empty() ? "" : fs::absolute(o.gt_file).string()},
-                        {"from", o.from}, {"to", o.to ? nlohmann::json(*o.to) : nlohmann::json(nullptr)}};
-    std::ofstream(run.root() / "run_options.json") << std::setw(2) << j << '\n';
+                        {"from", o.from}, {"to", o.to ? nlohmann::json(*o.to) : nlohmann::json(nullptr)},
+                        {"allow_truncated", o.allow_truncated}};
+    WriteFileAtomically(run.root() / "run_options.json", [&j](std::ostream& out) { out << std::setw(2) << j << '\n'; });
 }
 
 RunOptions ReadRunOptions(const RunFolder& run) {
@@ -97,6 +128,7 @@ RunOptions ReadRunOptions(const RunFolder& run) {
         o.gt_file = j.at("gt_file").get<std::string>();
         o.from = j.at("from").get<std::size_t>();
         if (!j.at("to").is_null()) o.to = j.at("to").get<std::size_t>();
+        o.allow_truncated = j.value("allow_truncated", false);
         o.out = run.root();
         return o;
     } catch (const nlohmann::json::exception& e) {
@@ -106,18 +138,21 @@ RunOptions ReadRunOptions(const RunFolder& run) {
 
 RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log) {
     const auto run_start = Clock::now();
-    const ReaderOptions reader_options = MakeReaderOptions(config.input);
+    ReaderOptions reader_options = MakeReaderOptions(config.input);
+    reader_options.allow_truncated = options.allow_truncated;
     // Open every input before creating the run folder: bad input fails without leaving anything behind.
     auto reader = OpenDataset(options.dataset, reader_options);
     const Trajectory pose_file = options.poses == PoseSource::kFile ? ReadPoses(options.poses_file) : Trajectory{};
     const ReferenceSource ground_truth(options.gt_file);
+    ground_truth.CheckCount(reader->Info().num_scans);
+    CheckScanRange(options, reader->Info().num_scans);
     const RunFolder run = RunFolder::Create(options.out, options.force);
     WriteRunOptions(run, options);
     {
-        std::ofstream out(run.config());
-        if (!config.derived.empty()) out << "# Settings derived from the data (revisit run prints why):\n";
-        for (const auto& line : config.derived) out << "#   " << line << '\n';
-        out << DumpConfig(config);
+        std::string header;
+        if (!config.derived.empty()) header = "# Settings derived from the data (revisit run prints why):\n";
+        for (const auto& line : config.derived) header += "#   " + line + '\n';
+        WriteFileAtomically(run.config(), header + DumpConfig(config));
     }
 
     // The ablation only matters when it can be scored.
@@ -183,7 +218,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         }
         state.timestamps.push_back(scan->timestamp);
         state.odometry.push_back(T_world_sensor);
-        const auto reference = ground_truth.active() ? ground_truth.At(scan->index, scan->timestamp) : scan->T_world_sensor;
+        const auto reference = ground_truth.active() ? std::optional(ground_truth.At(scan->index, scan->timestamp))
+                                                     : scan->T_world_sensor;
         if (reference && reference_complete) state.reference.push_back(*reference);
         else reference_complete = false;
         const auto update = pipeline.AddScan(position, points, T_world_sensor);
@@ -193,6 +229,14 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         read_start = Clock::now();
     }
     state.complete = !InterruptRequested();
+    state.truncated = reader->Info().truncated;
+    if (state.odometry.empty() && state.complete) {
+        // Only rawlogs get here with --from past the end: their length is known once read.
+        throw DatasetError(options.dataset, options.from > 0 ? "--from " + std::to_string(options.from) +
+                                                                   " is past the end: the dataset has " +
+                                                                   std::to_string(reader->Stats().scans) + " scans"
+                                                             : std::string("no scans read"));
+    }
     for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
                                                std::to_string(accepted));
@@ -221,6 +265,10 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     }
     const std::string drops = DescribeDrops(reader->Stats());
     if (!drops.empty()) log << "note: " << drops << '\n';
+    if (!state.truncated.empty()) {
+        log << "warning: --allow-truncated: the input is damaged, the run covers the " << state.odometry.size()
+            << " scans read before: " << state.truncated << " (run.json: truncated = true)\n";
+    }
     if (!state.complete) log << "interrupted: wrote the " << state.odometry.size() << " scans processed so far (run.json: complete = false)\n";
     return state;
 }

@@ -27,11 +27,16 @@ struct RunOptions {
     std::optional<std::size_t> to;      ///< last scan index read (inclusive)
     bool force = false;
     bool quiet = false;
+    bool allow_truncated = false;       ///< a damaged rawlog ends the run where reading stopped (run.json: truncated)
 };
 
 /// Runs everything and writes the run folder. Progress and the summary go to `log`. Ctrl-C stops
 /// reading; what was computed is written and run.json says "complete": false.
 RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log);
+
+/// Throws ConfigError for --to < --from and DatasetError for --from past the end (when the dataset's
+/// length is known before reading; rawlogs are checked after reading).
+void CheckScanRange(const RunOptions& options, std::optional<std::size_t> num_scans);
 
 /// The run's options as stored in run.json, so `revisit eval` can re-read the same scans.
 void WriteRunOptions(const RunFolder& run, const RunOptions& options);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <sstream>
 
 #include "closures/database_io.hpp"
+#include "core/png_size.hpp"
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
 #include "pipeline/csv.hpp"
@@ -133,6 +135,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
                              "scans: " + std::to_string(state.odometry.size()),
                              "length: " + FormatNumber(PathLength(state.odometry), 1) + " m",
                              state.complete ? "run complete" : "run INCOMPLETE (interrupted)"};
+    if (!state.truncated.empty()) input.dataset_summary.push_back("input TRUNCATED (--allow-truncated): " + state.truncated);
     input.config_text = ReadText(run.config());
     // Closure counts are the index's "at a glance" table (from input.closures); these are the run's.
     input.counts = {{"scans", std::to_string(state.odometry.size())},
@@ -202,8 +205,11 @@ ReportInput LoadReportInput(const RunFolder& run) {
         map.points = ReadMapPoints(run, id);
         return map;
     };
-    input.load_density_image = [run, maps](int id) -> std::optional<DensityImage> {
+    const int max_image_side = LoadConfig({run.config().string()}, {}).detector.density.max_image_side;
+    input.load_density_image = [run, maps, max_image_side](int id) -> std::optional<DensityImage> {
         if (id < 0 || id >= static_cast<int>(maps->size()) || !fs::exists(run.map_density(id))) return std::nullopt;
+        // Bounded before decoding: a damaged header must not make the decoder allocate gigabytes.
+        CheckPngSize(ReadPngSize(run.map_density(id)), max_image_side, run.map_density(id));
         DensityImage image;
         image.image = cv::imread(run.map_density(id).string(), cv::IMREAD_GRAYSCALE);
         image.origin = (*maps)[id].density_origin;
@@ -232,9 +238,10 @@ ReportInput LoadReportInput(const RunFolder& run) {
                 for (const auto& record : detector.maps()) last_session = std::max(last_session, record.session);
                 for (const auto& record : detector.maps())
                     if (record.session == last_session) by_id[record.id] = record.keypoints;
-            } catch (const std::exception&) {
-                // No database, or one this build cannot read: the pages are still useful without keypoints
-                // (`revisit inspect` and `LoadDatabase` report the database's own error).
+            } catch (const std::exception& e) {
+                // No database, or one this build cannot read: the pages are still useful without keypoints,
+                // but the user is told which file and why (`revisit inspect` fails instead: CheckRunDatabase).
+                std::cerr << "warning: " << e.what() << "; the report's pictures show no keypoints\n";
             }
             keypoints->by_id = std::move(by_id);
         });
@@ -247,6 +254,10 @@ ReportInput LoadReportInput(const RunFolder& run) {
         return LoadPly(run.corrected_map()).points;
     };
     return input;
+}
+
+void CheckRunDatabase(const RunFolder& run) {
+    LoadDatabase(run.database(), LoadConfig({run.config().string()}, {}).detector);
 }
 
 ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string>& overrides) {

@@ -14,6 +14,10 @@ namespace revisit {
 /// Everything the report shows, read from the run folder; maps and density images load on demand.
 ReportInput LoadReportInput(const RunFolder& run);
 
+/// Loads the run's database.bin; throws DatasetError naming it when it is missing, corrupt or from
+/// another configuration (`revisit inspect` needs its keypoints; `revisit report` only warns).
+void CheckRunDatabase(const RunFolder& run);
+
 /// The report settings of the run's own configuration (output.report_candidates), `overrides` (key=value) on top.
 ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string>& overrides = {});
 

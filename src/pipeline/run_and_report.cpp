@@ -1,6 +1,7 @@
 #include "pipeline/run_and_report.hpp"
 
 #include "pipeline/evaluate.hpp"
+#include "pipeline/interrupt.hpp"
 #include "pipeline/report_builder.hpp"
 #include "pipeline/summary.hpp"
 
@@ -17,7 +18,13 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
         const auto start = std::chrono::steady_clock::now();
         evaluation = EvaluateRun(run, state, options, config, log);
         after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (config.output.write_report) after_chain.report = WriteRunReport(run, log, {options.quiet, {}});
+        // Ctrl-C after the chain: the run folder is complete; the report is skipped, or said to be partial.
+        if (config.output.write_report && !InterruptRequested()) after_chain.report = WriteRunReport(run, log, {options.quiet, {}});
+        if (InterruptRequested()) {
+            log << "interrupted during evaluation or the report: the run folder is complete, the report may be "
+                   "missing or partial; redo it with `revisit report "
+                << run.root().string() << "`\n";
+        }
     } else {
         log << "skipped evaluation and report; finish them with `revisit eval " << run.root().string()
             << "` and `revisit report " << run.root().string() << "`\n";

@@ -4,9 +4,11 @@
 
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/atomic_file.hpp"
 #include "io/trajectory_io.hpp"
 #include "optimization/trajectory_correction.hpp"
 #include "pipeline/csv.hpp"
@@ -29,12 +31,15 @@ std::size_t RunState::NumAccepted() const {
 
 namespace {
 
+constexpr std::size_t kMaxMaps = 1'000'000'000;        ///< map ids are ints; larger is damage
+constexpr double kMinDensityResolution = 0.005;        ///< [m/px] the config's lower bound for density resolutions
+
 void WriteLines(const fs::path& file, const std::vector<std::string>& header, const std::vector<std::string>& rows) {
-    std::ofstream out(file);
-    for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
-    out << '\n';
-    for (const auto& row : rows) out << row << '\n';
-    if (!out) throw DatasetError(file, "write failed");
+    WriteFileAtomically(file, [&](std::ostream& out) {
+        for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
+        out << '\n';
+        for (const auto& row : rows) out << row << '\n';
+    });
 }
 
 std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
@@ -43,9 +48,7 @@ std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<st
 }
 
 void WriteJson(const fs::path& file, const json& value) {
-    std::ofstream out(file);
-    out << std::setw(2) << value << '\n';
-    if (!out) throw DatasetError(file, "write failed");
+    WriteFileAtomically(file, [&value](std::ostream& out) { out << std::setw(2) << value << '\n'; });
 }
 
 json ReadJson(const fs::path& file) {
@@ -56,6 +59,14 @@ json ReadJson(const fs::path& file) {
     } catch (const json::exception& e) {
         throw DatasetError(file, std::string("invalid JSON: ") + e.what());
     }
+}
+
+/// A non-negative integer field (0 when absent); any other number is damage, named.
+std::size_t Count(const json& object, const char* key, const fs::path& file) {
+    if (!object.contains(key)) return 0;
+    const json& value = object.at(key);
+    if (!value.is_number_unsigned()) throw DatasetError(file, std::string("'") + key + "' is not a count: " + value.dump());
+    return value.get<std::size_t>();
 }
 
 fs::path ClosureDetailFile(const RunFolder& run, std::size_t index) {
@@ -165,16 +176,29 @@ void WriteClosureDetail(const fs::path& file, const Closure& c) {
 
 void ReadClosureDetail(const fs::path& file, Closure& c) {
     const json j = ReadJson(file);
+    // Values are range-checked before conversion: a float cast out of range is undefined behaviour.
+    const auto number = [&file](const json& value, double low, double high) {
+        if (!value.is_number() || !(value.get<double>() >= low && value.get<double>() <= high)) {
+            throw DatasetError(file, "malformed closure detail: value " + value.dump() + " outside [" +
+                                         std::to_string(low) + ", " + std::to_string(high) + "]");
+        }
+        return value.get<double>();
+    };
+    constexpr double kMaxPixel = 1e6;  // keypoints are pixels of images at most density.max_image_side wide
     try {
         c.query_keypoints.clear();
         c.ref_keypoints.clear();
         c.matches.clear();
         c.inlier_mask.clear();
-        for (const auto& k : j.at("query_keypoints")) c.query_keypoints.emplace_back(k.at(0).get<float>(), k.at(1).get<float>());
-        for (const auto& k : j.at("ref_keypoints")) c.ref_keypoints.emplace_back(k.at(0).get<float>(), k.at(1).get<float>());
+        for (const auto& k : j.at("query_keypoints"))
+            c.query_keypoints.emplace_back(number(k.at(0), -kMaxPixel, kMaxPixel), number(k.at(1), -kMaxPixel, kMaxPixel));
+        for (const auto& k : j.at("ref_keypoints"))
+            c.ref_keypoints.emplace_back(number(k.at(0), -kMaxPixel, kMaxPixel), number(k.at(1), -kMaxPixel, kMaxPixel));
         for (const auto& m : j.at("matches")) {
-            c.matches.push_back(FeatureMatch{m.at(0).get<int>(), m.at(1).get<int>(), m.at(2).get<int>()});
-            c.inlier_mask.push_back(m.at(3).get<std::uint8_t>());
+            const auto query = static_cast<int>(number(m.at(0), 0, double(c.query_keypoints.size()) - 1));
+            const auto ref = static_cast<int>(number(m.at(1), 0, double(c.ref_keypoints.size()) - 1));
+            c.matches.push_back(FeatureMatch{query, ref, static_cast<int>(number(m.at(2), 0, 1024))});
+            c.inlier_mask.push_back(static_cast<std::uint8_t>(number(m.at(3), 0, 1)));
         }
     } catch (const json::exception& e) {
         throw DatasetError(file, std::string("malformed closure detail: ") + e.what());
@@ -197,7 +221,8 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
     }
     WriteJson(run.timings_json(), timings);
     WriteJson(run.run_info(), {{"dataset", state.dataset}, {"format", state.format}, {"poses", state.poses_source},
-                               {"complete", state.complete}, {"scans", state.odometry.size()},
+                               {"complete", state.complete}, {"truncated", !state.truncated.empty()},
+                               {"truncated_reason", state.truncated}, {"scans", state.odometry.size()},
                                {"maps", state.maps.size()}, {"closures", state.closures.size()},
                                {"accepted_closures", state.NumAccepted()}, {"wall_seconds", state.wall_seconds},
                                {"peak_rss_kb", state.peak_rss_kb}, {"odometry_fallbacks", state.odometry_fallbacks},
@@ -212,8 +237,9 @@ RunState ReadRunState(const RunFolder& run) {
         state.format = info.at("format").get<std::string>();
         state.poses_source = info.at("poses").get<std::string>();
         state.complete = info.at("complete").get<bool>();
+        state.truncated = info.value("truncated_reason", std::string());
         state.wall_seconds = info.value("wall_seconds", 0.0);
-        state.peak_rss_kb = info.value("peak_rss_kb", std::size_t{0});
+        state.peak_rss_kb = Count(info, "peak_rss_kb", run.run_info());
         state.odometry_fallbacks = info.value("odometry_fallbacks", std::vector<std::size_t>{});
     } catch (const json::exception& e) {
         throw DatasetError(run.run_info(), std::string("malformed run info: ") + e.what());
@@ -226,15 +252,25 @@ RunState ReadRunState(const RunFolder& run) {
     const auto maps = CsvTable::Read(run.local_maps_csv());
     for (std::size_t i = 0; i < maps.size(); ++i) {
         MapRecordSummary m;
-        m.id = static_cast<int>(maps.Integer(i, "id"));
-        m.first_scan = static_cast<std::size_t>(maps.Integer(i, "first_scan"));
-        m.last_scan = static_cast<std::size_t>(maps.Integer(i, "last_scan"));
+        const std::size_t num_scans = state.odometry.size();
+        m.id = static_cast<int>(maps.Index(i, "id", kMaxMaps));
+        m.first_scan = maps.Index(i, "first_scan", num_scans);
+        m.last_scan = maps.Index(i, "last_scan", num_scans);
+        if (m.last_scan < m.first_scan) throw DatasetError(maps.file(), "last_scan is before first_scan", i + 2);
         m.travel_start = maps.Number(i, "travel_start_m");
         m.travel_end = maps.Number(i, "travel_end_m");
-        m.num_points = static_cast<std::size_t>(maps.Integer(i, "num_points"));
-        m.num_keypoints = static_cast<int>(maps.Integer(i, "num_keypoints"));
+        m.num_points = maps.Index(i, "num_points", std::numeric_limits<std::size_t>::max());
+        m.num_keypoints = static_cast<int>(maps.Index(i, "num_keypoints", std::numeric_limits<int>::max()));
         m.density_origin = {maps.Number(i, "density_origin_x"), maps.Number(i, "density_origin_y")};
         m.density_resolution = maps.Number(i, "density_resolution");
+        // Every resolution the chain computes is >= density.min_resolution's lower bound: a smaller
+        // one would ask for images of billions of pixels when drawn.
+        if (m.density_resolution != 0.0 && !(m.density_resolution >= kMinDensityResolution)) {
+            std::ostringstream problem;
+            problem << "density_resolution " << m.density_resolution << " m/px is below the smallest a run writes ("
+                    << kMinDensityResolution << " m/px)";
+            throw DatasetError(maps.file(), problem.str(), i + 2);
+        }
         m.T_world_map = maps.Pose(i, "T_world_map");
         m.T_world_map_corrected = maps.Pose(i, "T_world_map_corrected");
         m.T_ground_map = maps.Pose(i, "T_ground_map");
@@ -246,19 +282,19 @@ RunState ReadRunState(const RunFolder& run) {
         ClosureRecord r;
         r.method = closures.Text(i, "method");
         auto& c = r.closure;
-        c.query_id = static_cast<int>(closures.Integer(i, "query"));
-        c.ref_id = static_cast<int>(closures.Integer(i, "reference"));
-        c.query_scans = {static_cast<std::size_t>(closures.Integer(i, "query_first_scan")),
-                         static_cast<std::size_t>(closures.Integer(i, "query_last_scan"))};
-        c.ref_scans = {static_cast<std::size_t>(closures.Integer(i, "ref_first_scan")),
-                       static_cast<std::size_t>(closures.Integer(i, "ref_last_scan"))};
-        c.num_inliers = static_cast<int>(closures.Integer(i, "inliers"));
-        c.num_votes = static_cast<int>(closures.Integer(i, "votes"));
+        const std::size_t num_scans = state.odometry.size();
+        constexpr auto kMaxCount = static_cast<std::size_t>(std::numeric_limits<int>::max());
+        c.query_id = static_cast<int>(closures.Index(i, "query", kMaxMaps));
+        c.ref_id = static_cast<int>(closures.Index(i, "reference", kMaxMaps));
+        c.query_scans = {closures.Index(i, "query_first_scan", num_scans), closures.Index(i, "query_last_scan", num_scans)};
+        c.ref_scans = {closures.Index(i, "ref_first_scan", num_scans), closures.Index(i, "ref_last_scan", num_scans)};
+        c.num_inliers = static_cast<int>(closures.Index(i, "inliers", kMaxCount));
+        c.num_votes = static_cast<int>(closures.Index(i, "votes", kMaxCount));
         c.T_query_ref = closures.Pose(i, "T_query_ref").matrix();
         r.refinement.T_query_ref = closures.Pose(i, "T_query_ref_refined");
         r.refinement.overlap = closures.Number(i, "overlap");
         r.refinement.rms = closures.Number(i, "rms_m");
-        r.refinement.num_correspondences = static_cast<int>(closures.Integer(i, "correspondences"));
+        r.refinement.num_correspondences = static_cast<int>(closures.Index(i, "correspondences", kMaxCount));
         r.refined = closures.Integer(i, "refined") != 0;
         r.accepted = closures.Integer(i, "accepted") != 0;
         r.refinement.accepted = closures.Integer(i, "verified") != 0;
@@ -271,8 +307,13 @@ RunState ReadRunState(const RunFolder& run) {
     }
     ReadComparisons(run, state);
     const json timings = ReadJson(run.timings_json());
-    for (const auto& [stage, value] : timings.items()) {
-        state.timings[stage] = StageTimer{value.value("total_ms", 0.0), value.value("count", std::size_t{0})};
+    try {
+        for (const auto& [stage, value] : timings.items()) {
+            if (!value.is_object()) throw DatasetError(run.timings_json(), "stage '" + stage + "' is not an object");
+            state.timings[stage] = StageTimer{value.value("total_ms", 0.0), Count(value, "count", run.timings_json())};
+        }
+    } catch (const json::exception& e) {
+        throw DatasetError(run.timings_json(), std::string("malformed timings: ") + e.what());
     }
     return state;
 }

@@ -49,6 +49,7 @@ struct RunState {
     std::string format;
     std::string poses_source;  ///< "odometry", "dataset" or a file
     bool complete = false;     ///< false when interrupted
+    std::string truncated;     ///< --allow-truncated: why reading stopped early (empty: the input was read whole)
     std::vector<double> timestamps;
     Poses odometry;            ///< per scan: the poses the maps were built from
     Poses corrected;           ///< per scan, after the pose graph

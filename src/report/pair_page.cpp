@@ -1,5 +1,6 @@
 #include "report/pair_page.hpp"
 
+#include "core/atomic_file.hpp"
 #include "render/map_pair_view.hpp"
 #include "report/html_page.hpp"
 
@@ -63,7 +64,10 @@ std::string MapStem(int map_id) {
 }
 
 void WritePng(const std::filesystem::path& path, const cv::Mat& image) {
-    if (!cv::imwrite(path.string(), image)) throw std::runtime_error("report: cannot write " + path.string());
+    // Encoded in memory, then written all or nothing like every other file (core/atomic_file.hpp).
+    std::vector<std::uint8_t> png;
+    if (!cv::imencode(".png", image, png)) throw std::runtime_error("report: cannot encode " + path.string());
+    WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 std::string WriteThumbnail(const cv::Mat& image, const std::string& stem, const std::filesystem::path& dir, int width) {
@@ -76,9 +80,7 @@ std::string WriteThumbnail(const cv::Mat& image, const std::string& stem, const 
 }
 
 void WriteText(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error("report: cannot write " + path.string());
+    WriteFileAtomically(path, text);
 }
 
 WrittenPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool detected, const std::string& stem,

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/trajectory_io.hpp"
 #include "sim/scan_simulator.hpp"
@@ -200,9 +201,7 @@ SimSummary RunSimulation(const SimConfig& config, const std::filesystem::path& o
     const std::string name = out.filename().string();
     const bool rawlog = name.size() > 7 && (name.find(".rawlog") != std::string::npos);
     const auto yaml = rawlog ? std::filesystem::path(out.string() + ".sim.yaml") : out / "sim.yaml";
-    std::ofstream file(yaml);
-    if (!file) throw DatasetError(yaml, "cannot write");
-    file << SimConfigYaml(config, summary);
+    WriteFileAtomically(yaml, SimConfigYaml(config, summary));
     return summary;
 }
 

@@ -43,7 +43,7 @@ TEST(Cli, InfoOnSenaLoop) {
     REVISIT_REQUIRE_DATA(file);
     const auto result = RunCli("info " + Quote(file.string()));
     EXPECT_EQ(result.exit_code, 0) << result.output;
-    EXPECT_NE(result.output.find("scans:            224"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("scans:            225"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("(likely loops)"), std::string::npos) << result.output;
 }
 
@@ -53,7 +53,7 @@ TEST(Cli, InfoOnARawlogWithoutScansFails) {
     const auto result = RunCli("info " + Quote(file.string()));
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.output.find("no range scans found"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("CObservationBearingRange x599"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("CObservationBearingRange x600"), std::string::npos) << result.output;
 }
 
 TEST(Cli, ConvertKittiToRawlogAndBackIsBitExact) {

@@ -74,6 +74,7 @@ TEST(Corruption, Rawlogs) {
             scan.T_world_sensor = Eigen::Isometry3d::Identity();
             writer->Write(scan);
         }
+        writer->Finish();
     }
     const auto read_all = [](const std::filesystem::path& f) {
         auto reader = OpenDataset(f);

@@ -1,0 +1,138 @@
+/// Writes the seed corpus of every fuzz target with the project's own writers (small files):
+/// `fuzz_seeds DIR` fills DIR/<target>/. Targets whose first byte selects a reader get it prefixed.
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "closures/database_io.hpp"
+#include "core/error.hpp"
+#include "io/cloud_files.hpp"
+#include "io/trajectory_io.hpp"
+#include "io/writer.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/run_files.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace revisit;
+
+std::string ReadBytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void Seed(const fs::path& dir, const std::string& name, int selector, const std::string& bytes) {
+    fs::create_directories(dir);
+    std::ofstream out(dir / name, std::ios::binary);
+    if (selector >= 0) out.put(static_cast<char>(selector));
+    out << bytes;
+}
+
+Scan MakeScan(int index) {
+    Scan scan;
+    scan.timestamp = 0.1 * index;
+    for (int i = 0; i < 24; ++i) {
+        const double angle = i * 0.26;
+        scan.points.emplace_back(float(5 * std::cos(angle)), float(5 * std::sin(angle)), float(0.1 * index));
+        scan.intensities.push_back(float(i));
+    }
+    scan.T_world_sensor = Eigen::Isometry3d(Eigen::Translation3d(index, 0, 0));
+    scan.T_odom_sensor = scan.T_world_sensor;
+    return scan;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::cerr << "usage: fuzz_seeds DIR\n";
+        return 2;
+    }
+    const fs::path out = argv[1];
+    const fs::path tmp = out / "tmp";
+    fs::create_directories(tmp);
+    try {
+        // Scans: KITTI .bin, PCD ascii and binary, PLY binary and ascii.
+        SaveKittiBin(tmp / "s.bin", MakeScan(0));
+        Seed(out / "fuzz_scans", "bin", 0, ReadBytes(tmp / "s.bin"));
+        Seed(out / "fuzz_scans", "pcd-ascii", 1,
+             "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 2\nHEIGHT 1\n"
+             "POINTS 2\nDATA ascii\n1 2 3 0.5\n4 5 6 1\n");
+        std::string binary_points(2 * 16, '\0');
+        Seed(out / "fuzz_scans", "pcd-binary", 1,
+             "FIELDS x y z t\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 2\nHEIGHT 1\nDATA binary\n" + binary_points);
+        SavePly(tmp / "s.ply", MakeScan(1).points, MakeScan(1).intensities);
+        Seed(out / "fuzz_scans", "ply-binary", 2, ReadBytes(tmp / "s.ply"));
+        Seed(out / "fuzz_scans", "ply-ascii", 2,
+             "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nelement vertex 2\nproperty float x\n"
+             "property float y\nproperty float z\nend_header\n3 0 1 2\n1 2 3\n4 5 6\n");
+        // Trajectories, times, calib.
+        Trajectory trajectory;
+        for (int i = 0; i < 3; ++i) {
+            trajectory.poses.push_back(*MakeScan(i).T_world_sensor);
+            trajectory.timestamps.push_back(0.1 * i);
+        }
+        WriteKittiPoses(tmp / "k.txt", trajectory.poses);
+        WriteTumPoses(tmp / "t.txt", trajectory);
+        WriteTimes(tmp / "times.txt", trajectory.timestamps);
+        Seed(out / "fuzz_trajectories", "kitti", 0, ReadBytes(tmp / "k.txt"));
+        Seed(out / "fuzz_trajectories", "tum", 0, ReadBytes(tmp / "t.txt"));
+        Seed(out / "fuzz_trajectories", "times", 1, ReadBytes(tmp / "times.txt"));
+        Seed(out / "fuzz_trajectories", "calib", 2, "P0: 1 0 0 0 0 1 0 0 0 0 1 0\nTr: 1 0 0 0.1 0 1 0 0 0 0 1 -0.2\n");
+        // Rawlogs: plain and gzip, point clouds and 2D range scans with odometry and ground truth.
+        for (const char* name : {"r.rawlog", "r.rawlog.gz", "planar.rawlog"}) {
+            WriterOptions options;
+            options.planar_as_range_scan = std::string(name) == "planar.rawlog";
+            options.planar_beams = 32;
+            auto writer = CreateRawlogWriter(tmp / name, options);
+            for (int i = 0; i < 2; ++i) writer->Write(MakeScan(i));
+            writer->Finish();
+            Seed(out / "fuzz_rawlog", name, -1, ReadBytes(tmp / name));
+        }
+        // database.bin with one map.
+        ClosureDetector detector;
+        LocalMap map;
+        for (int i = 0; i < 4000; ++i) {
+            map.points.emplace_back(float((i * 37) % 200) * 0.25f, float((i * 91) % 160) * 0.25f, 0.f);
+        }
+        detector.AddMap(map);
+        SaveDatabase(detector, tmp / "database.bin");
+        Seed(out / "fuzz_database", "database", -1, ReadBytes(tmp / "database.bin"));
+        // Configs: the defaults and a preset-like override file.
+        Seed(out / "fuzz_config", "default", -1, DumpConfig(PipelineConfig{}));
+        Seed(out / "fuzz_config", "small", -1, "density:\n  resolution: 0.2\nodometry:\n  planar: true\n");
+        // Run folder files (run.json, poses, local_maps.csv, closures.csv, timings.json, a closure detail).
+        RunFolder run(tmp / "run");
+        fs::create_directories(run.root() / "closures");
+        RunState state;
+        state.dataset = "seq";
+        state.format = "kitti";
+        state.poses_source = "odometry";
+        state.complete = true;
+        state.timestamps = trajectory.timestamps;
+        state.odometry = state.corrected = trajectory.poses;
+        MapRecordSummary summary;
+        summary.last_scan = 2;
+        summary.density_resolution = 0.5;
+        state.maps = {summary, summary};
+        state.maps[1].id = 1;
+        ClosureRecord record;
+        record.closure.query_id = 1;
+        record.closure.query_keypoints = {{1, 2}, {3, 4}};
+        record.closure.ref_keypoints = {{5, 6}};
+        record.closure.matches = {{0, 0, 12}, {1, 0, 40}};
+        record.closure.inlier_mask = {1, 0};
+        state.closures = {record};
+        state.timings["read"] = {1.0, 3};
+        WriteRunState(run, state);
+        const fs::path files[] = {run.run_info(), run.odometry_tum(), run.corrected_kitti(), run.local_maps_csv(),
+                                  run.closures_csv(), run.timings_json(), run.root() / "closures" / "0000.json"};
+        for (int i = 0; i < 7; ++i) Seed(out / "fuzz_run_folder", "file" + std::to_string(i), i, ReadBytes(files[i]));
+    } catch (const std::exception& e) {
+        std::cerr << "fuzz_seeds: " << e.what() << '\n';
+        return 1;
+    }
+    fs::remove_all(tmp);
+    return 0;
+}
