@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/error.hpp"
 #include "io/reader.hpp"
 
 namespace revisit {
@@ -130,13 +131,19 @@ AutoSettings ConfigureFromData(PipelineConfig& config, const std::filesystem::pa
     ApertureChecker checker;
     std::size_t read = 0;
     bool planar_beams = false;
-    while (auto scan = reader->Next()) {
-        ++read;
-        planar_beams = planar_beams || scan->planar_beams.has_value();
-        profiler.Add(*scan);
-        checker.Add(*scan);
-        const bool aperture_done = !planar_beams || checker.Done() || read >= kMaxApertureScans;
-        if (profiler.Done() && aperture_done) break;
+    try {
+        while (auto scan = reader->Next()) {
+            ++read;
+            planar_beams = planar_beams || scan->planar_beams.has_value();
+            profiler.Add(*scan);
+            checker.Add(*scan);
+            const bool aperture_done = !planar_beams || checker.Done() || read >= kMaxApertureScans;
+            if (profiler.Done() && aperture_done) break;
+        }
+    } catch (const DatasetError&) {
+        // Damaged input after some scans: profile what was read; the run itself reports the damage
+        // (or keeps the scans with --allow-truncated).
+        if (read == 0) throw;
     }
     return ApplyAutoSettings(config, profiler.Profile(), checker.Estimate());
 }

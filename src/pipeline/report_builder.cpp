@@ -279,6 +279,8 @@ double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOp
             if (file.is_regular_file() && (ext == ".html" || ext == ".png" || ext == ".svg")) fs::remove(file.path());
         }
     const ReportInput input = LoadReportInput(run);
+    // The database is read once, up front: a damaged one is reported even when no rendered page needs keypoints.
+    if (!input.map_ids.empty() && input.load_keypoints) input.load_keypoints(input.map_ids.front());
     std::optional<Progress> progress;
     const auto stats = WriteReport(input, run.report_dir(), report_config, [&](std::size_t done, std::size_t total) {
         if (!progress) progress.emplace(log, Progress::DetectMode(options.quiet), total, "pages");
