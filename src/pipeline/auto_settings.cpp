@@ -13,7 +13,7 @@ namespace {
 
 /// Scans profiled for the settings (the first seconds of a sequence).
 constexpr std::size_t kProfileScans = 10;
-/// 2D lasers: scans read at most while looking for turns on the spot to measure the aperture.
+/// 2D lasers: scans read at most while looking for turns to measure the aperture.
 constexpr std::size_t kMaxApertureScans = 5000;
 /// An explicit value this far (either way) from the data's suggestion gets a warning.
 constexpr double kContradictionFactor = 3.0;
@@ -27,13 +27,15 @@ std::string Number(double value, int digits = 2) {
     std::ostringstream out;
     out << std::fixed << std::setprecision(digits) << value;
     std::string s = out.str();
-    while (s.find('.') != std::string::npos && (s.back() == '0' || s.back() == '.')) {
-        const bool dot = s.back() == '.';
-        s.pop_back();
-        if (dot) break;
+    if (s.find('.') != std::string::npos) {  // no trailing zeros: "0.4", "90"
+        s.erase(s.find_last_not_of('0') + 1);
+        if (s.back() == '.') s.pop_back();
     }
     return s;
 }
+
+/// Choices stored as 0/1 that the schema takes as true/false.
+bool IsFlag(const std::string& key) { return key == "odometry.planar" || key == "odometry.deskew"; }
 
 double RoundTo(double value, double step) { return std::round(value / step) * step; }
 
@@ -44,16 +46,18 @@ SettingChoice ChooseVoxel(const DataProfile& p) {
     const double min_points = p.planar ? kMinSourcePoints2D : kMinSourcePoints3D;
     double voxel = VoxelCandidates().front();
     double points = p.source_points.empty() ? 0.0 : p.source_points.front();
+    bool limited = false;
     for (std::size_t k = 0; k < p.voxel_candidates.size(); ++k) {
         if (p.voxel_candidates[k] > 1.1 * by_scale) break;  // 0.98 m of a 9.8 m median is 1 m
-        if (k > 0 && p.source_points[k] < min_points) break;
+        if (k > 0 && p.source_points[k] < min_points) {
+            limited = true;
+            break;
+        }
         voxel = p.voxel_candidates[k];
         points = p.source_points[k];
     }
     std::string reason = "median range " + Number(p.range_p50) + " m / 10";
-    if (voxel + 1e-9 < RoundTo(by_scale, 0.05) - 0.05) {
-        reason += ", limited to keep >= " + Number(min_points, 0) + " points per scan after downsampling";
-    }
+    if (limited) reason += ", limited to keep >= " + Number(min_points, 0) + " points per scan after downsampling";
     reason += " (" + Number(points, 0) + " points registered per scan)";
     return {"odometry.voxel_size", voxel, reason};
 }
@@ -66,7 +70,7 @@ std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optio
     if (aperture && aperture->contradicts) {
         choices.push_back({"input.laser_aperture_deg", aperture->measured_deg,
                            "the file states " + Number(aperture->stated_deg, 1) + " deg; " + std::to_string(aperture->pairs) +
-                               " turns on the spot measured against the wheel odometry say " + Number(aperture->measured_deg, 1) + " deg"});
+                               " turns measured against the wheel odometry say " + Number(aperture->measured_deg, 1) + " deg"});
     }
     const SettingChoice voxel = ChooseVoxel(p);
     const double v = voxel.value;
@@ -99,8 +103,7 @@ AutoSettings ApplyAutoSettings(PipelineConfig& config, const DataProfile& profil
         if (config.explicit_keys.count(choice.key) == 0) {
             std::ostringstream value;
             value << std::setprecision(10) << choice.value;
-            const bool is_bool = choice.key == "odometry.planar" || choice.key == "odometry.deskew";
-            schema.ApplyOverride(choice.key + "=" + (is_bool ? (choice.value != 0.0 ? "true" : "false") : value.str()));
+            schema.ApplyOverride(choice.key + "=" + (IsFlag(choice.key) ? (choice.value != 0.0 ? "true" : "false") : value.str()));
             choice.applied = true;
             continue;
         }
@@ -151,8 +154,7 @@ AutoSettings ConfigureFromData(PipelineConfig& config, const std::filesystem::pa
 std::vector<std::string> AutoSettings::Describe() const {
     std::vector<std::string> lines;
     for (const auto& c : choices) {
-        const bool is_bool = c.key == "odometry.planar" || c.key == "odometry.deskew";
-        const std::string value = is_bool ? (c.value != 0.0 ? "true" : "false") : Number(c.value, 3);
+        const std::string value = IsFlag(c.key) ? (c.value != 0.0 ? "true" : "false") : Number(c.value, 3);
         lines.push_back(c.key + " = " + value + (c.applied ? "" : " (not applied: given explicitly)") + "  <- " + c.reason);
     }
     return lines;

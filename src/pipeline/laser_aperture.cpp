@@ -121,7 +121,7 @@ std::string ApertureEstimate::Describe() const {
     std::ostringstream out;
     out << std::fixed << std::setprecision(1) << beams << " beams, stated aperture " << stated_deg << " deg";
     if (std::abs(used_deg - stated_deg) > 1e-6) out << " (used " << used_deg << " deg)";
-    out << "; " << pairs << " turns on the spot measure " << measured_deg << " deg (ratio " << std::setprecision(2) << ratio
+    out << "; " << pairs << " turns of 8-45 deg measure " << measured_deg << " deg (ratio " << std::setprecision(2) << ratio
         << " +- " << ratio_spread << ")";
     return out.str();
 }

@@ -108,7 +108,7 @@ TEST(ApertureCheck, AStatedApertureTheTurnsContradictIsCorrectedWithAWarningAndA
 
     PipelineConfig wrong;
     const auto corrected = ConfigureFromData(wrong, WithStatedAperture(truth, 90.0, dir / "wrong.rawlog"));
-    ASSERT_TRUE(corrected.aperture) << "no turns on the spot found";
+    ASSERT_TRUE(corrected.aperture) << "no measurable turns found";
     EXPECT_TRUE(corrected.aperture->contradicts) << corrected.aperture->Describe();
     EXPECT_NEAR(wrong.input.laser_aperture_deg, 180.0, 1e-9) << corrected.aperture->Describe();
     ASSERT_FALSE(corrected.warnings.empty());
