@@ -51,7 +51,7 @@ std::string Describe(double value) {
 LidarOdometry::LidarOdometry(const OdometryConfig& config)
     : config_(Validated(config)),
       map_(config.VoxelSize(), config.max_points_per_voxel),
-      threshold_(config.initial_threshold, config.min_motion_th, config.ThresholdRange()) {}
+      threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {}
 
 Eigen::Isometry3d LidarOdometry::PredictMotion(const Scan& scan) {
     if (config_.use_prior && scan.T_odom_sensor && last_T_odom_sensor_) {
@@ -148,7 +148,7 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         Eigen::Isometry3d delta_translation = delta;
         delta_translation.linear().setIdentity();
         if (config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
-            ModelError(delta_translation.inverse() * delta, config_.ThresholdRange()) > voxel) {
+            ModelError(delta_translation.inverse() * delta, config_.max_range) > voxel) {
             const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
             const std::size_t alternative_agreeing =
                 alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel, 1) : 0;

@@ -18,9 +18,6 @@ struct OdometryConfig {
     // Adaptive threshold (METHOD.md section 1).
     double initial_threshold = 2.0;  ///< [m] sigma before any motion was seen
     double min_motion_th = 0.1;      ///< [m] a frame updates sigma only when its model error exceeds this (KISS-ICP code)
-    /// [m] lever arm of the rotation term of the model error (a rotation error theta moves a point at
-    /// this range by ~range x theta); 0 = max_range (KISS-ICP)
-    double threshold_range = 0.0;
     // ICP.
     /// Paper-era by default (METHOD.md). On the simulated demo city each kernel stalls once: sigma/3
     /// over the first ~100 scans from rest, sigma around scan 2886 (see the issue notes).
@@ -50,8 +47,6 @@ struct OdometryConfig {
 
     /// The map voxel size actually used [m].
     double VoxelSize() const { return voxel_size > 0.0 ? voxel_size : max_range / 100.0; }
-    /// The lever arm actually used [m].
-    double ThresholdRange() const { return threshold_range > 0.0 ? threshold_range : max_range; }
 };
 
 }  // namespace revisit

@@ -19,8 +19,6 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.max_points_per_voxel", &o.max_points_per_voxel, "", "map points per voxel (KISS-ICP: 20)", Range{1, 100});
     s.Add("odometry.initial_threshold", &o.initial_threshold, "m", "adaptive threshold before motion (KISS-ICP: 2.0)", Range{0.01, 100});
     s.Add("odometry.min_motion_th", &o.min_motion_th, "m", "a frame updates the threshold only above this motion (KISS-ICP: 0.1)", Range{0, 10});
-    s.Add("odometry.threshold_range", &o.threshold_range, "m",
-          "lever arm of the adaptive threshold's rotation term; 0 = max_range (KISS-ICP)", Range{0, 1000});
     s.AddEnum("odometry.kernel", &o.kernel, {{"paper", IcpKernel::kPaper}, {"later", IcpKernel::kLater}},
               "Geman-McClure scale: paper-era sigma/3, later sigma (METHOD.md 1)");
     s.Add("odometry.max_iterations", &o.max_iterations, "", "ICP iterations per frame (KISS-ICP: 500)", Range{1, 10000});

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <unordered_set>
 
-#include <cstdint>
+#include "core/voxel.hpp"
 
 namespace revisit {
 namespace {
@@ -31,12 +31,9 @@ std::string Fixed(double value, int digits) {
 constexpr std::size_t kVoxelCountScans = 5;
 
 std::size_t OccupiedVoxels(const std::vector<Eigen::Vector3f>& points, double voxel) {
-    std::unordered_set<std::uint64_t> occupied;
+    std::unordered_set<Voxel, VoxelHash> occupied;
     occupied.reserve(points.size() / 4);
-    for (const auto& p : points) {
-        const auto key = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / voxel)) & 0x1FFFFF); };
-        occupied.insert(key(p.x()) << 42 | key(p.y()) << 21 | key(p.z()));
-    }
+    for (const auto& p : points) occupied.insert(VoxelOf(p.cast<double>(), voxel));
     return occupied.size();
 }
 
