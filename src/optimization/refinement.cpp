@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <deque>
 #include <optional>
+#include <tsl/robin_set.h>
 
 #include "core/error.hpp"
 #include "core/se3.hpp"
@@ -189,6 +190,35 @@ std::string Judge(const RefinementResult& result, const Eigen::Isometry3d& T_gue
     return {};
 }
 
+/// The guess moved along `up` by the offset (steps of the voxel, within +-range) under which the most
+/// reference voxels land on occupied query voxels; ties keep the smaller offset (scan order).
+Eigen::Isometry3d SearchVertical(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& query,
+                                 const Eigen::Isometry3d& T_guess, const Eigen::Vector3d& up, double range, double voxel) {
+    if (!(range > 0.0) || up.squaredNorm() == 0.0) return T_guess;
+    tsl::robin_set<Voxel, VoxelHash> occupied;
+    occupied.reserve(query.size());
+    for (const auto& q : query) occupied.insert(VoxelOf(q, voxel));
+    std::vector<Eigen::Vector3d> moved(source.size());
+    for (std::size_t i = 0; i < source.size(); ++i) moved[i] = T_guess * source[i];
+    const Eigen::Vector3d unit_up = up.normalized();
+    const int steps = static_cast<int>(std::floor(range / voxel));
+    int best_count = -1;
+    double best_offset = 0.0;
+    for (int k = 0; k <= 2 * steps; ++k) {
+        const int signed_step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, +1, -1, +2, -2, ...
+        const Eigen::Vector3d shift = unit_up * (signed_step * voxel);
+        int count = 0;
+        for (const auto& p : moved) count += occupied.count(VoxelOf(p + shift, voxel)) != 0 ? 1 : 0;
+        if (count > best_count) {
+            best_count = count;
+            best_offset = signed_step * voxel;
+        }
+    }
+    Eigen::Isometry3d result = T_guess;
+    result.translation() += unit_up * best_offset;
+    return result;
+}
+
 }  // namespace
 
 int CeresThreadCount() {
@@ -197,7 +227,8 @@ int CeresThreadCount() {
 
 RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                                  const std::vector<Eigen::Vector3d>& query_points_in_query,
-                                 const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config) {
+                                 const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config,
+                                 const Eigen::Vector3d& up_in_query) {
     Validate(config);
     RefinementResult result;
     result.T_query_ref = T_query_ref_guess;
@@ -211,6 +242,9 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     std::vector<Eigen::Vector3d> plane_points;
     plane_points.reserve(planes.size());
     for (const auto& plane : planes) plane_points.push_back(plane.point);
+    const Eigen::Isometry3d T_start = SearchVertical(source, query_down, T_query_ref_guess, up_in_query,
+                                                     config.vertical_search, config.voxel_size);
+    result.T_query_ref = T_start;
 
     // ICP runs on a fixed, evenly strided subset of the reference map (speed); the verdict uses all of it.
     const std::size_t stride = 1 + source.size() / static_cast<std::size_t>(std::max(1, config.max_solver_points));
@@ -240,7 +274,7 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     std::vector<Eigen::Vector3d> moved(source.size());
     for (std::size_t i = 0; i < source.size(); ++i) moved[i] = result.T_query_ref * source[i];
     result.overlap = VoxelOverlap(moved, query_down, config.overlap_voxel_size);
-    result.reason = Judge(result, T_query_ref_guess, config);
+    result.reason = Judge(result, T_start, config);
     result.accepted = result.reason.empty();
     if (result.num_correspondences < 6) result.information.setZero();
     return result;

@@ -18,6 +18,11 @@ struct RefinementConfig {
     int min_normal_neighbours = 5;             ///< fewer neighbours: no normal, point not used
     double max_surface_variation = 0.1;        ///< lambda_min / sum(lambda) above this: not a plane, point not used
     double initial_max_distance = 2.0;         ///< [m] correspondence gate at the first iteration (covers the 2D guess error)
+    /// [m] before ICP, the offset along the query map's up direction within +-this that overlaps the
+    /// maps best (steps of voxel_size): a 2D closure measures x, y and yaw only, and its height comes
+    /// from the two maps' ground planes, which are metres off on slopes, steps or cluttered ground
+    /// (0 = off).
+    double vertical_search = 5.0;
     double max_correspondence_distance = 0.9;  ///< [m] gate reached after `gate_decay_iterations` (METHOD.md section 5)
     int gate_decay_iterations = 5;             ///< iterations over which the gate shrinks linearly
     double loss_scale = 0.2;                   ///< [m] Cauchy scale of the point-to-plane residual
@@ -59,11 +64,13 @@ struct RefinementResult {
 
 /// Registers the reference map onto the query map starting from `T_query_ref_guess`
 /// (the 2D closure pose lifted to 3D) and judges the result with the config's thresholds.
+/// `up_in_query`: the vertical in the query frame (its ground normal), for the vertical search.
 /// Runs the correspondence search in parallel with TBB; Ceres uses as many threads as
 /// the caller's tbb::global_control allows.
 RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                                  const std::vector<Eigen::Vector3d>& query_points_in_query,
-                                 const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config);
+                                 const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config,
+                                 const Eigen::Vector3d& up_in_query = Eigen::Vector3d::UnitZ());
 
 /// Ceres thread count that respects the caller's tbb::global_control.
 int CeresThreadCount();

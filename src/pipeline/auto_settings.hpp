@@ -17,6 +17,7 @@ namespace revisit {
 struct SettingChoice {
     std::string key;     ///< e.g. "odometry.voxel_size"
     double value = 0.0;  ///< chosen value (booleans as 0/1)
+    std::string text;    ///< a named choice (e.g. density.scaling "percentile"); empty: `value`
     std::string reason;  ///< what in the data led to it
     bool applied = false;  ///< false: the key was given explicitly and kept
 };

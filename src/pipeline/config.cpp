@@ -112,6 +112,8 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("refinement.voxel_size", &r.voxel_size, "m", "downsampling of both maps", Range{0.01, 10});
     s.Add("refinement.normal_radius", &r.normal_radius, "m", "neighbourhood of the normals", Range{0.05, 20});
     s.Add("refinement.initial_max_distance", &r.initial_max_distance, "m", "correspondence gate at the start", Range{0.01, 100});
+    s.Add("refinement.vertical_search", &r.vertical_search, "m",
+          "before ICP, try offsets along the vertical within +-this (a 2D closure knows no height; 0 = off)", Range{0, 100});
     s.Add("refinement.max_correspondence_distance", &r.max_correspondence_distance, "m", "final gate (METHOD.md 5: ~0.9)", Range{0.01, 100});
     s.Add("refinement.loss_scale", &r.loss_scale, "m", "Cauchy scale of the point-to-plane residual", Range{0.001, 100});
     s.Add("refinement.max_iterations", &r.max_iterations, "", "outer ICP iterations", Range{1, 1000});

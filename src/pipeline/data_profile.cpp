@@ -6,6 +6,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "closures/ground_alignment.hpp"
 #include "core/voxel.hpp"
 
 namespace revisit {
@@ -57,6 +58,11 @@ bool DataProfiler::Add(const Scan& scan) {
         for (std::size_t k = 0; k < VoxelCandidates().size(); ++k) {
             source_points_[k].push_back(static_cast<double>(OccupiedVoxels(scan.points, 1.5 * VoxelCandidates()[k])));
         }
+        const GroundAlignment ground = AlignGround(scan.points, GroundAlignmentConfig{});
+        if (ground.aligned) {
+            const double cos_tilt = std::clamp(ground.T_ground_map.linear()(2, 2), -1.0, 1.0);
+            ground_tilts_.push_back(std::acos(cos_tilt) * 180.0 / M_PI);
+        }
     }
     const std::size_t stride = std::max<std::size_t>(1, scan.points.size() / kSamplesPerScan);
     for (std::size_t i = 0; i < scan.points.size(); i += stride) {
@@ -95,6 +101,7 @@ DataProfile DataProfiler::Profile() const {
     profile.has_odometry_prior = odometry_prior_;
     profile.voxel_candidates = VoxelCandidates();
     for (const auto& counts : source_points_) profile.source_points.push_back(Quantile(counts, 0.5));
+    if (!planar_ && !ground_tilts_.empty()) profile.ground_tilt_deg = Quantile(ground_tilts_, 0.5);
     return profile;
 }
 
@@ -113,6 +120,11 @@ std::vector<std::string> DataProfile::Describe() const {
     timing += has_point_times ? ", per-point times" : ", no per-point times";
     timing += has_odometry_prior ? ", odometry prior" : "";
     lines.push_back(timing);
+    if (!planar) {
+        lines.push_back(ground_tilt_deg >= 0.0 ? "ground plane tilted " + Fixed(ground_tilt_deg, 1) + " deg in the sensor frame"
+                                               : "no ground plane found in the first scans");
+    }
+    if (motion.scans > 0) lines.push_back(motion.Describe());
     return lines;
 }
 

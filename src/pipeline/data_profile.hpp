@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/scan.hpp"
+#include "pipeline/motion_profile.hpp"
 
 namespace revisit {
 
@@ -28,6 +29,12 @@ struct DataProfile {
     /// odometry's 1.5 v source downsampling at each (METHOD.md section 1).
     std::vector<double> voxel_candidates;
     std::vector<double> source_points;
+    /// [deg] tilt of the ground plane seen in the sensor frame (median over the first scans; -1: no
+    /// ground found): a handheld or tilted sensor, whose maps must be levelled before projecting.
+    double ground_tilt_deg = -1.0;
+    /// How fast the platform moves (measured after the odometry's settings are chosen; see
+    /// ConfigureFromData).
+    MotionProfile motion;
 
     bool empty() const { return scans == 0; }
     /// One line per fact, for `revisit info` and the run log.
@@ -57,6 +64,7 @@ class DataProfiler {
     std::vector<double> points_per_scan_;
     std::vector<double> timestamps_;
     std::vector<std::vector<double>> source_points_;  ///< per voxel candidate, per scan
+    std::vector<double> ground_tilts_;                ///< [deg] per scan with a ground plane
     bool planar_ = true;
     bool point_times_ = false;
     bool odometry_prior_ = false;

@@ -41,8 +41,9 @@ std::string DescribeAll(std::initializer_list<const AutoSettings*> settings) {
 TEST(AutoSettings, AWalkACityDriveAndAnIndoorLaserGetDifferentDocumentedSettings) {
     test::TempDir dir;
     PipelineConfig walk, city, indoor;
-    const auto walk_settings = ConfigureFromData(walk, Simulate("campus-handheld", 12, dir / "walk"));
-    const auto city_settings = ConfigureFromData(city, Simulate("tiny", 12, dir / "city"));
+    // Enough scans for the speed to settle (the car starts from rest).
+    const auto walk_settings = ConfigureFromData(walk, Simulate("campus-handheld", 60, dir / "walk"));
+    const auto city_settings = ConfigureFromData(city, Simulate("tiny", 150, dir / "city"));
     const auto indoor_settings = ConfigureFromData(indoor, Simulate("indoor-2d-180", 12, dir / "indoor.rawlog"));
 
     // The indoor laser is planar with centimetre voxels; the walk's scene is smaller than the city's.
@@ -64,14 +65,26 @@ TEST(AutoSettings, AWalkACityDriveAndAnIndoorLaserGetDifferentDocumentedSettings
     EXPECT_DOUBLE_EQ(city.odometry.voxel_size, Chosen(city_settings, "odometry.voxel_size"));
     EXPECT_DOUBLE_EQ(city.odometry.initial_threshold, 2.0 * city.odometry.voxel_size);
     EXPECT_NE(DumpConfig(walk), DumpConfig(city));
+
+    // Issue 16: the closure detector's scale follows the data too. The walk (1.4 m/s) gets maps of
+    // about 10 s of motion, the drive the paper's 100 m; pixels follow the map voxel.
+    EXPECT_LT(walk.local_map.split_distance, 25.0) << DescribeAll({&walk_settings});
+    EXPECT_DOUBLE_EQ(city.local_map.split_distance, 100.0) << DescribeAll({&city_settings});
+    EXPECT_LT(walk.detector.density.resolution, city.detector.density.resolution);
+    EXPECT_TRUE(walk.detector.align_ground);
+    EXPECT_DOUBLE_EQ(indoor.graph_noise.odometry_rotation_per_m, 0.002);
+    EXPECT_DOUBLE_EQ(indoor.detector.density.resolution, indoor.odometry.voxel_size);
 }
 
 TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
     test::TempDir dir;
     const fs::path data = Simulate("indoor-2d-180", 12, dir / "indoor.rawlog");
-    PipelineConfig config = LoadConfig({}, {"odometry.voxel_size=0.7", "odometry.max_range=100"});
+    PipelineConfig config =
+        LoadConfig({}, {"odometry.voxel_size=0.7", "odometry.max_range=100", "local_map.split_distance=42"});
     const auto settings = ConfigureFromData(config, data);
     EXPECT_DOUBLE_EQ(config.odometry.voxel_size, 0.7);
+    EXPECT_DOUBLE_EQ(config.local_map.split_distance, 42.0);  // the closure detector's settings too
+    EXPECT_DOUBLE_EQ(config.detector.density.resolution, Chosen(settings, "density.resolution"));
     EXPECT_DOUBLE_EQ(config.odometry.max_range, 100.0);
     EXPECT_TRUE(config.odometry.planar);  // not given: still derived
     bool warned_range = false;

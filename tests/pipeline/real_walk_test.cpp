@@ -1,10 +1,13 @@
 /// Issue 16 on the real Livox handheld walk in ../shared: 266 keyframes, 58.5 m around a ~15 x 16 m
-/// courtyard, back to 0.18 m from its start. Without a cap on the local maps' extent the handheld preset
-/// cuts 3 maps and never compares the return with the start.
+/// courtyard, back to 0.18 m from its start. With the settings derived from the data (no preset) the
+/// return must be compared with the start, and found, with no false closure, whichever poses feed
+/// the maps: the reference, the raw FAST-LIO2 odometry, or the project's own odometry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 
+#include "pipeline/auto_settings.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
 #include "test_data.hpp"
@@ -19,13 +22,9 @@ struct WalkRun {
 };
 
 WalkRun RunWalk(const fs::path& dataset, PoseSource poses) {
-    // The handheld preset with the extent cap; recent maps are skipped by the revisit gap (20 m of
-    // travel, what "revisit" means in the coverage), and the ground-truth closures need 20 m of travel
-    // (0.4 x the preset's 50 m range) instead of 100 m, longer than the whole walk.
-    const PipelineConfig config = LoadConfig(
-        {(fs::path(REVISIT_SOURCE_DIR) / "configs/handheld.yaml").string()},
-        {"local_map.max_extent=8", "detector.skip_recent_travel=20", "evaluation.travel_gap_ranges=0.4",
-         "output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"});
+    PipelineConfig config =
+        LoadConfig({}, {"output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"});
+    ConfigureFromData(config, dataset);  // what `revisit run` does before it starts
     test::TempDir out;
     RunOptions options;
     options.dataset = dataset;
@@ -43,36 +42,35 @@ WalkRun RunWalk(const fs::path& dataset, PoseSource poses) {
     return run;
 }
 
-TEST(RealWalk, LivoxHandheldWalkComparesTheReturnWithTheStartAndAcceptsNoFalseClosure) {
+double Median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+TEST(RealWalk, LivoxHandheldWalkWithTheDefaultsFindsTheReturnAndNoFalseClosure) {
     const auto dataset = test::SharedData("livox_handheld_walk");
     REVISIT_REQUIRE_DATA(dataset);
-    for (const PoseSource poses : {PoseSource::kDataset, PoseSource::kFile}) {
-        SCOPED_TRACE(poses == PoseSource::kDataset ? "--poses dataset" : "--poses orig_odom_poses.txt --gt poses.txt");
+    for (const PoseSource poses : {PoseSource::kDataset, PoseSource::kFile, PoseSource::kOdometry}) {
+        SCOPED_TRACE(poses == PoseSource::kDataset ? "--poses dataset"
+                     : poses == PoseSource::kFile  ? "--poses orig_odom_poses.txt --gt poses.txt"
+                                                   : "the project's odometry");
         const WalkRun run = RunWalk(dataset, poses);
         ASSERT_TRUE(run.evaluation);
-        const auto& state = run.state;
         const auto& e = *run.evaluation;
-        ASSERT_GE(state.maps.size(), 5u);  // 5 with the 8 m cap
+        // Walk-scale maps (about 9 m: 10 s at the measured 0.9 m/s), not one map for the whole walk.
+        EXPECT_GE(run.state.maps.size(), 5u);
         EXPECT_EQ(e.truth.num_false, 0u);
+        EXPECT_GE(e.truth.num_true, 1u);
         EXPECT_EQ(e.coverage.revisit_scans, 25u);  // ../shared/DATA.md: "about 25 frames come back within 3 m"
-
-        // The return (last map) meets the start (map 0) with 20 RANSAC inliers, above gamma.
-        const int last = state.maps.back().id;
-        const ClosureRecord* back_home = nullptr;
-        for (const auto& record : state.closures)
-            if (record.method == "density" && record.closure.query_id == last && record.closure.ref_id == 0) back_home = &record;
-        ASSERT_NE(back_home, nullptr);
-        EXPECT_GE(back_home->closure.num_inliers, 15);
-        // Measured: the 3D refinement rejects it (overlap / residual gates of the sparse 70-degree maps),
-        // so no true closure covers the 25 revisiting scans; the miss table says so. With the refinement
-        // gates relaxed (min_overlap 0.1, max_rms 1) it is accepted, 0.28 m / 0.1 deg from the reference,
-        // and covers all 25.
-        EXPECT_FALSE(back_home->accepted);
-        EXPECT_DOUBLE_EQ(e.coverage.coverage, 0.0);
-        bool named = false;
-        for (const auto& missed : e.missed.missed)
-            named |= missed.query_map == last && missed.ref_map == 0 && missed.stage == MissStage::kRefinementRejected;
-        EXPECT_TRUE(named);
+        EXPECT_GE(e.coverage.coverage, 0.8);
+        std::vector<double> translation, yaw;
+        for (const auto& v : e.truth.verdicts) {
+            if (!v.is_true) continue;
+            translation.push_back(v.error.translation);
+            yaw.push_back(v.error.yaw_deg);
+        }
+        EXPECT_LE(Median(translation), 0.3);
+        EXPECT_LE(Median(yaw), 1.0);
     }
 }
 

@@ -1,0 +1,66 @@
+#include "pipeline/motion_profile.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+namespace revisit {
+
+bool MotionMeter::Add(const Scan& scan) {
+    if (Done()) return false;
+    if (scan.points.empty() && !scan.T_odom_sensor) return true;
+    if (scans_ == 0) from_prior_ = scan.T_odom_sensor.has_value();
+    Eigen::Isometry3d pose;
+    if (from_prior_) {
+        if (!scan.T_odom_sensor) return true;  // a scan without the prior: skip it, keep the source
+        pose = *scan.T_odom_sensor;
+    } else {
+        if (!odometry_) odometry_.emplace(odometry_config_);
+        pose = odometry_->RegisterScan(scan);
+    }
+    if (scans_ == 0) first_time_ = scan.timestamp;
+    ++scans_;
+    if (last_pose_) {
+        const double dt = scan.timestamp - last_time_;
+        // Observations that share a time stamp (a rawlog's odometry and laser) are one step.
+        if (!(dt > 0.0)) return !Done();
+        const double step = (last_pose_->inverse() * pose).translation().norm();
+        travel_ += step;
+        speeds_.push_back(step / dt);
+    }
+    last_pose_ = pose;
+    last_time_ = scan.timestamp;
+    return !Done();
+}
+
+bool MotionMeter::Done() const { return scans_ >= max_scans_ || (scans_ > 1 && last_time_ - first_time_ >= max_seconds_); }
+
+MotionProfile MotionMeter::Profile() const {
+    MotionProfile profile;
+    profile.scans = scans_;
+    profile.travel = travel_;
+    profile.duration = last_time_ - first_time_;
+    if (speeds_.size() < 5) return profile;  // no usable time stamps
+    // The 75th percentile: a platform that stands for part of the window still shows its pace.
+    std::vector<double> speeds = speeds_;
+    const std::size_t k = (speeds.size() - 1) * 3 / 4;
+    std::nth_element(speeds.begin(), speeds.begin() + static_cast<std::ptrdiff_t>(k), speeds.end());
+    profile.speed = speeds[k];
+    profile.source = from_prior_ ? "odometry prior" : "lidar odometry";
+    return profile;
+}
+
+std::string MotionProfile::Describe() const {
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(2);
+    if (!known()) {
+        out << "speed unknown (" << scans << " scans"
+            << (duration > 0.0 ? ", " + std::to_string(static_cast<int>(duration)) + " s without motion" : ", no usable time stamps") << ")";
+        return out.str();
+    }
+    out << "speed " << speed << " m/s (75th percentile over " << scans << " scans, " << std::setprecision(1) << duration
+        << " s, " << travel << " m, from the " << source << ")";
+    return out.str();
+}
+
+}  // namespace revisit
