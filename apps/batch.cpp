@@ -97,8 +97,9 @@ void AddBatchCommand(CLI::App& root, Action& action) {
     auto o = std::make_shared<BatchOptions>();
     auto* cmd = root.add_subcommand("batch", "Run a manifest of sequences (one run each), then merge them: locally or on Slurm");
     cmd->footer(
-        "MANIFEST: YAML (sequences: [{path: DIR, config: NAME|FILE, reference: FILE}, ...]) or CSV\n"
-        "(path[,config[,reference]] per line). Relative paths are relative to the manifest. OUT gets runs/NN_name,\n"
+        "MANIFEST: YAML (sequences: [{path: DIR, config: NAME|FILE, reference: FILE, from: N, to: M}, ...]) or\n"
+        "CSV (path[,config[,reference[,from[,to]]]] per line); relative paths are relative to the manifest, from/to\n"
+        "cut one recording into sessions (revisit run --from/--to). OUT gets runs/NN_name,\n"
         "logs/NN_name.log, merge/ (revisit merge of every run) and, for Slurm, slurm/runs.sbatch and merge.sbatch.\n"
         "--engine slurm submits a job array (one task per sequence; fleet.slurm_* give CPUs, memory, time) and a\n"
         "merge job with --dependency=afterok, then follows squeue/sacct; OUT must be on a filesystem every node\n"

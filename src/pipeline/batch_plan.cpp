@@ -53,12 +53,14 @@ std::vector<BatchSequence> ReadYamlManifest(const fs::path& manifest, const fs::
             } else if (item.IsMap() && item["path"]) {
                 for (const auto& field : item) {
                     const auto key = field.first.as<std::string>();
-                    if (key != "path" && key != "config" && key != "reference")
-                        throw DatasetError(manifest, where + ": unknown key '" + key + "' (path, config, reference)");
+                    if (key != "path" && key != "config" && key != "reference" && key != "from" && key != "to")
+                        throw DatasetError(manifest, where + ": unknown key '" + key + "' (path, config, reference, from, to)");
                 }
                 sequence.path = Resolve(base, item["path"].as<std::string>());
                 if (item["config"]) sequence.config = ResolveConfig(base, item["config"].as<std::string>());
                 if (item["reference"]) sequence.reference = Resolve(base, item["reference"].as<std::string>());
+                if (item["from"]) sequence.from = item["from"].as<std::size_t>();
+                if (item["to"]) sequence.to = item["to"].as<std::size_t>();
             } else {
                 throw DatasetError(manifest, where + ": needs a path");
             }
@@ -83,12 +85,19 @@ std::vector<BatchSequence> ReadCsvManifest(const fs::path& manifest, const fs::p
             fields.push_back(Trim(line.substr(start, comma - start)));
         fields.push_back(Trim(line.substr(start)));
         if (sequences.empty() && fields[0] == "path") continue;  // header
-        if (fields.size() > 3) throw DatasetError(manifest, "line " + std::to_string(number) + ": more than 3 fields (path,config,reference)");
+        if (fields.size() > 5)
+            throw DatasetError(manifest, "line " + std::to_string(number) + ": more than 5 fields (path,config,reference,from,to)");
         if (fields[0].empty()) throw DatasetError(manifest, "line " + std::to_string(number) + ": empty path");
         BatchSequence sequence;
         sequence.path = Resolve(base, fields[0]);
         if (fields.size() > 1 && !fields[1].empty()) sequence.config = ResolveConfig(base, fields[1]);
         if (fields.size() > 2) sequence.reference = Resolve(base, fields[2]);
+        for (std::size_t f = 3; f < fields.size(); ++f) {
+            if (fields[f].empty()) continue;
+            if (fields[f].find_first_not_of("0123456789") != std::string::npos)
+                throw DatasetError(manifest, "line " + std::to_string(number) + ": '" + fields[f] + "' is not a scan index");
+            (f == 3 ? sequence.from : sequence.to) = std::stoull(fields[f]);
+        }
         sequences.push_back(sequence);
     }
     return sequences;
@@ -138,6 +147,7 @@ BatchPlan MakeBatchPlan(const std::vector<BatchSequence>& sequences, const fs::p
         BatchTask task;
         task.index = i;
         task.name = prefix + base.string();
+        if (s.from || s.to) task.name += "_" + std::to_string(s.from.value_or(0)) + "-" + (s.to ? std::to_string(*s.to) : "end");
         task.run_dir = plan.out / "runs" / task.name;
         task.log = plan.out / "logs" / (task.name + ".log");
         task.arguments = {"run", fs::absolute(s.path).lexically_normal().string(), "--out", task.run_dir.string(), "--force", "--quiet"};
@@ -145,6 +155,8 @@ BatchPlan MakeBatchPlan(const std::vector<BatchSequence>& sequences, const fs::p
         if (!s.config.empty()) task.arguments.insert(task.arguments.end(), {"--config", s.config});
         for (const auto& o : overrides) task.arguments.insert(task.arguments.end(), {"--set", o});
         if (!s.reference.empty()) task.arguments.insert(task.arguments.end(), {"--gt", fs::absolute(s.reference).string()});
+        if (s.from) task.arguments.insert(task.arguments.end(), {"--from", std::to_string(*s.from)});
+        if (s.to) task.arguments.insert(task.arguments.end(), {"--to", std::to_string(*s.to)});
         if (threads > 0) task.arguments.insert(task.arguments.end(), {"--threads", std::to_string(threads)});
         plan.merge_arguments.push_back(task.run_dir.string());
         plan.tasks.push_back(task);

@@ -3,6 +3,7 @@
 /// `revisit merge` (issue 20). This file is the plan (commands, folders, logs) and what is finished;
 /// batch_slurm.hpp turns it into Slurm scripts, batch_local.hpp runs it on this machine.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,16 +14,18 @@ struct BatchSequence {
     std::filesystem::path path;
     std::string config;                 ///< "" : the batch's --config/--set only
     std::filesystem::path reference;    ///< "" : the dataset's own poses, if any
+    std::optional<std::size_t> from;    ///< first scan (revisit run --from), e.g. one half of a recording
+    std::optional<std::size_t> to;      ///< last scan, inclusive
 };
 
-/// Reads a manifest: YAML (`sequences:` a list of {path, config, reference}) or CSV (`path[,config[,reference]]`
-/// per line, an optional header line starting with `path`, `#` comments). Relative paths are relative to
+/// Reads a manifest: YAML (`sequences:` a list of {path, config, reference, from, to}) or CSV
+/// (`path[,config[,reference[,from[,to]]]]` per line, an optional header line starting with `path`, `#` comments). Relative paths are relative to
 /// the manifest's folder. Throws DatasetError naming the file (and line for CSV) on anything malformed.
 std::vector<BatchSequence> ReadManifest(const std::filesystem::path& manifest);
 
 struct BatchTask {
     std::size_t index = 0;
-    std::string name;                    ///< NN_<dataset name>: the run folder and log name
+    std::string name;                    ///< NN_<dataset name>[_from-to]: the run folder and log name
     std::filesystem::path run_dir;       ///< <out>/runs/<name>
     std::filesystem::path log;           ///< <out>/logs/<name>.log
     std::vector<std::string> arguments;  ///< of the revisit executable: run DATASET --out ...
