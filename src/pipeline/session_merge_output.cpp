@@ -2,6 +2,7 @@
 /// trajectories in the common frame and the joint map.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 
@@ -13,6 +14,7 @@
 #include "pipeline/csv.hpp"
 #include "pipeline/folder_map_store.hpp"
 #include "pipeline/session_merge.hpp"
+#include "report/svg_plot.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
@@ -46,6 +48,47 @@ void WriteCrossClosures(const fs::path& file, const MergeResult& result) {
                     .Text() + '\n';
     }
     WriteFileAtomically(file, text);
+}
+
+/// Every connected session's trajectory in the common frame, one colour per session, and the accepted
+/// cross-session closures as markers at the query map's origin; equal axes.
+std::string SessionsSvg(const MergeResult& result) {
+    LinePlotSpec spec;
+    spec.title = "sessions in the common frame (markers: accepted cross-session closures)";
+    spec.x_label = "x [m]";
+    spec.y_label = "y [m]";
+    spec.width = 720;
+    spec.height = 640;
+    double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+    for (std::size_t s = 0; s < result.sessions.size(); ++s) {
+        if (result.corrected[s].empty()) continue;
+        PlotSeries series;
+        series.name = "session " + std::to_string(s);
+        series.color = SeriesColor(s);
+        for (const auto& T : result.corrected[s]) {
+            series.x.push_back(T.translation().x());
+            series.y.push_back(T.translation().y());
+            min_x = std::min(min_x, T.translation().x()), max_x = std::max(max_x, T.translation().x());
+            min_y = std::min(min_y, T.translation().y()), max_y = std::max(max_y, T.translation().y());
+        }
+        spec.series.push_back(std::move(series));
+    }
+    if (spec.series.empty()) return LinePlotSvg(spec);
+    for (const auto& c : result.cross) {
+        if (!c.accepted) continue;
+        const auto& maps = result.sessions[std::size_t(c.query_session)].state.maps;
+        for (std::size_t m = 0; m < maps.size(); ++m) {
+            if (maps[m].id != c.closure.query_id) continue;
+            const Eigen::Vector3d p = result.graph.T_common_node[std::size_t(c.query_session)][m].translation();
+            spec.markers.push_back({"", p.x(), p.y(), SeriesColor(std::size_t(c.ref_session))});
+        }
+    }
+    // Equal metres per pixel on both axes (the plot area is about width - 80 by height - 80 pixels).
+    const double span = std::max({max_x - min_x, (max_y - min_y) * 640.0 / 560.0, 1.0}) * 1.05;
+    const double cx = 0.5 * (min_x + max_x), cy = 0.5 * (min_y + max_y);
+    spec.x_range = std::make_pair(cx - span / 2, cx + span / 2);
+    spec.y_range = std::make_pair(cy - span * 560.0 / 640.0 / 2, cy + span * 560.0 / 640.0 / 2);
+    return LinePlotSvg(spec);
 }
 
 }  // namespace
@@ -92,6 +135,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
     SavePly(out / "map_joint.ply", points);
     result.joint_map_points = points.size();
     WriteCrossClosures(out / "cross_closures.csv", result);
+    WriteFileAtomically(out / "sessions.svg", SessionsSvg(result));
 
     int candidates = 0, verified = 0, accepted = 0;
     for (const auto& c : result.cross) {
