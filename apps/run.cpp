@@ -54,7 +54,7 @@ int RunRun(RunCommandOptions& o) {
     if (!sessions.empty() && state.complete && !InterruptRequested()) {
         sessions.push_back(o.run.out);
         const auto merged = MergeRunFolders(sessions, o.run.out / "merge", true, o.config.overrides, std::cerr, std::cout);
-        if (!merged.graph.connected[0] || std::count(merged.graph.connected.begin(), merged.graph.connected.end(), 0) > 0) return 3;
+        if (std::count(merged.graph.connected.begin(), merged.graph.connected.end(), 0) > 0) return 3;  // as revisit merge
     }
     return state.complete && !InterruptRequested() ? 0 : 130;
 }
