@@ -167,8 +167,11 @@ SlurmOutcome RunOnSlurm(const BatchPlan& plan, const std::vector<std::size_t>& i
 
     const std::string jobs = (outcome.array_job.empty() ? "" : outcome.array_job + ",") + outcome.merge_job;
     std::string last;
+    int failed_polls = 0;
     for (;;) {
         const auto queue = Capture("squeue -h -o '%i %T %r' -j " + jobs);
+        failed_polls = queue.status == 0 ? 0 : failed_polls + 1;
+        if (failed_polls >= 30) throw std::runtime_error("squeue failed 30 times in a row: " + queue.output);
         std::map<std::string, int> counts;
         bool merge_blocked = false, array_left = false;
         std::istringstream lines(queue.output);
