@@ -19,6 +19,8 @@ void AddOdometryCommand(CLI::App& root, Action& action);
 void AddDemoCommand(CLI::App& root, Action& action);
 void AddConfigCommand(CLI::App& root, Action& action);
 void AddBenchCommand(CLI::App& root, Action& action);
+void AddMergeCommand(CLI::App& root, Action& action);
+void AddBatchCommand(CLI::App& root, Action& action);
 
 /// A progress line on stderr when it is a terminal, rewritten in place; silent otherwise.
 void ShowProgress(const std::string& text);

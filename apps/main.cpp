@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
     revisit::app::AddConvertCommand(root, action);
     revisit::app::AddConfigCommand(root, action);
     revisit::app::AddBenchCommand(root, action);
+    revisit::app::AddMergeCommand(root, action);
+    revisit::app::AddBatchCommand(root, action);
     try {
         root.parse(argc, argv);
         return action ? action() : 0;

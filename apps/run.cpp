@@ -1,10 +1,12 @@
 /// `revisit run DATASET`: the whole chain into a run folder, then evaluation and the report.
+#include <algorithm>
 #include <iostream>
 
 #include "commands.hpp"
 #include "core/error.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/run_and_report.hpp"
+#include "pipeline/session_merge.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {
@@ -19,9 +21,18 @@ struct RunCommandOptions {
     long long from = 0;  ///< signed: a negative index is named as an error, not wrapped around
     long long to = 0;
     bool has_to = false;
+    std::vector<std::string> against;  ///< earlier runs: merge with them after this run
 };
 
 int RunRun(RunCommandOptions& o) {
+    std::vector<fs::path> sessions;
+    if (!o.against.empty()) {
+        // Check the earlier runs before spending time on this one; without --config, take the first one's
+        // settings, so that this run's descriptors are comparable with theirs.
+        const auto earlier = LoadSessionRuns({o.against.begin(), o.against.end()});
+        for (const auto& session : earlier) sessions.push_back(session.folder);
+        if (o.config.configs.empty()) o.config.configs.push_back(RunFolder(earlier.front().folder).config().string());
+    }
     const auto config = ResolveConfigFor(o.config, o.run.dataset, std::cerr);
     const auto threads = LimitThreads(o.config.threads);
     if (o.poses == "odometry") o.run.poses = PoseSource::kOdometry;
@@ -40,6 +51,11 @@ int RunRun(RunCommandOptions& o) {
     if (!o.run.quiet) std::cerr << "revisit: " << o.run.dataset.string() << " -> " << o.run.out.string() << '\n';
     const RunState state = RunAndReport(o.run, config, std::cerr, std::cout);
     if (default_out) RunFolder::UpdateLatestLink(o.run.out);
+    if (!sessions.empty() && state.complete && !InterruptRequested()) {
+        sessions.push_back(o.run.out);
+        const auto merged = MergeRunFolders(sessions, o.run.out / "merge", true, o.config.overrides, std::cerr, std::cout);
+        if (std::count(merged.graph.connected.begin(), merged.graph.connected.end(), 0) > 0) return 3;  // as revisit merge
+    }
     return state.complete && !InterruptRequested() ? 0 : 130;
 }
 }  // namespace
@@ -57,7 +73,8 @@ void AddRunCommand(CLI::App& root, Action& action) {
         "Examples:\n"
         "  revisit run ~/kitti/sequences/00 --config kitti\n"
         "  revisit run intel.rawlog --config indoor2d --out runs/intel   (the 180-deg aperture is measured)\n"
-        "  revisit run seq/ --poses dataset --set density.resolution=0.2 --threads 2");
+        "  revisit run seq/ --poses dataset --set density.resolution=0.2 --threads 2\n"
+        "  revisit run day2/ --against runs/day1 --out runs/day2   (joint result in runs/day2/merge)");
     cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, or .rawlog[.gz]")->required();
     AddConfigOptions(*cmd, o->config);
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
@@ -65,6 +82,9 @@ void AddRunCommand(CLI::App& root, Action& action) {
     cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI or TUM) for evaluation");
     cmd->add_option("--from", o->from, "first scan index to use");
     cmd->add_option("--to", o->to, "last scan index to use (inclusive)")->each([o](const std::string&) { o->has_to = true; });
+    cmd->add_option("--against", o->against,
+                    "an earlier run folder (repeatable): also find closures with its session and write the joint "
+                    "result to OUT/merge (as revisit merge); without --config, its config.yaml is used");
     cmd->add_flag("--force", o->run.force, "write into an existing non-empty run folder");
     cmd->add_flag("--quiet", o->run.quiet, "no progress output");
     cmd->add_flag("--allow-truncated", o->run.allow_truncated,

@@ -14,6 +14,7 @@ struct SimulateOptions {
     std::uint64_t seed = 0;
     std::size_t max_scans = 0;
     std::string trajectory;
+    int session = 0;
     bool force = false;
     bool quiet = false;
     bool list = false;
@@ -28,6 +29,7 @@ int RunSimulate(const SimulateOptions& options) {
     SimConfig config = SimPreset(options.preset);
     if (options.seed != 0) config.seed = options.seed;
     if (options.max_scans != 0) config.max_scans = options.max_scans;
+    config.session = options.session;
     if (!options.trajectory.empty()) {
         // A street world built along the given route, with the preset's sensor and city densities.
         config.world = WorldKind::kAroundTrajectory;
@@ -59,6 +61,7 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
         "  revisit simulate --preset demo --out data/demo\n"
         "  revisit simulate --preset indoor-2d-360 --out indoor.rawlog.gz --seed 7\n"
         "  revisit simulate --preset city-64 --trajectory ../shared/data/kitti_gt_poses/00.txt --out sim00\n"
+        "  revisit simulate --preset demo --session 1 --out data/demo-s1   # same city, another route\n"
         "  revisit simulate --list-presets");
     cmd->add_option("--preset", options->preset, "world + sensor preset (see --list-presets)")->capture_default_str();
     cmd->add_option("--out", options->out, "output KITTI folder or .rawlog[.gz] file");
@@ -68,6 +71,10 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
                     "drive this KITTI/TUM trajectory through a street world built along it (the preset gives the "
                     "sensor and densities)")
         ->check(CLI::ExistingFile);
+    cmd->add_option("--session", options->session,
+                    "another session in the same world: K > 0 drives another route (same world seed, route seed "
+                    "derived from seed and K)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--force", options->force, "write into an existing non-empty folder / overwrite a file");
     cmd->add_flag("--quiet", options->quiet, "no progress output");
     cmd->add_flag("--list-presets", options->list, "print the preset names and exit");

@@ -11,7 +11,9 @@ packages=(
   libgtest-dev libbenchmark-dev
   chromium
   clang libclang-rt-14-dev ccache
+  slurm-wlm munge
 )
+# slurm-wlm and munge: `revisit batch --engine slurm` and its test, which starts a single-node cluster.
 # --fuzz is kept for scripts/fuzz.sh; clang and its fuzzer runtime are part of the normal setup, since
 # the test suite's fuzz smoke needs them.
 

@@ -31,6 +31,8 @@ void OdometryCases(const CaseContext& c);
 void LocalMapCases(const CaseContext& c);
 void ClosureStageCases(const CaseContext& c);
 void TreeCases(const CaseContext& c);
+/// The database of a fleet: 8 sessions over size / 8 places, query+insert time and memory per map.
+void FleetTreeCases(const CaseContext& c);
 void RefinementCases(const CaseContext& c);
 void PoseGraphCases(const CaseContext& c);
 void GroundTruthCases(const CaseContext& c);

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "benchmark/cases.hpp"
+#include "benchmark/machine.hpp"
 #include "closures/detector.hpp"
 #include "core/se3.hpp"
 
@@ -165,6 +166,53 @@ void TreeCases(const CaseContext& c) {
                       std::to_string(tree.MemoryBytes() / std::size_t(next_id)) + " B/map, " +
                       std::to_string(ScannedEntries(tree, query)) + " entries scanned");
         }
+    }
+}
+
+/// Issue 20's scale question: one database holding many sessions of a city. Every place is seen by 8
+/// sessions; a place's descriptors are a real map's with 24 random bits flipped each (distinct places,
+/// ORB-like bit statistics), an observation flips 4 more. Maps are inserted session by session, as
+/// `revisit merge` does; each timed query is a new observation of a stored place.
+void FleetTreeCases(const CaseContext& c) {
+    constexpr int kSessions = 8;
+    const auto maps = Maps(c);
+    const auto& source = maps.back();
+    const auto variants = Variants(source.map, 16, 3);
+    const auto config = ClosureDetectorConfig::Paper();
+    std::mt19937_64 rng(11);
+    const auto flip = [&rng](std::vector<Descriptor> descriptors, int bits) {
+        for (auto& d : descriptors) {
+            for (int k = 0; k < bits; ++k) {
+                const int bit = int(rng() % 256);
+                d[std::size_t(bit >> 6)] ^= std::uint64_t(1) << (bit & 63);
+            }
+        }
+        return descriptors;
+    };
+    for (const int size : c.scale.fleet_database_sizes) {
+        const int places = std::max(1, size / kSessions);
+        std::vector<std::vector<Descriptor>> place(static_cast<std::size_t>(places));
+        for (int p = 0; p < places; ++p) place[std::size_t(p)] = flip(variants[std::size_t(p) % variants.size()].descriptors, 24);
+        HammingTree tree(config.tree);
+        std::int32_t next_id = 0;
+        const auto insert_start = std::chrono::steady_clock::now();
+        for (int session = 0; session < kSessions; ++session)
+            for (int p = 0; p < places && next_id < size; ++p) tree.Add(flip(place[std::size_t(p)], 4), next_id++);
+        const double insert_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - insert_start).count();
+        std::size_t matches = 0;
+        int query_place = 0;
+        Measurement measured = Measure("fleet_tree/query+insert " + std::to_string(size) + " maps", "ms/map", FigureKind::kMsPerItem,
+                                       MeasureConfig{1, c.scale.tree_queries}, [&] {
+                                           const auto query = flip(place[std::size_t(query_place++ * 7919 % places)], 4);
+                                           matches = tree.MatchAndAdd(query, next_id++).size();
+                                           return 1.0;
+                                       });
+        c.Add(std::move(measured), std::to_string(kSessions) + " sessions x " + std::to_string(places) + " places of " +
+                                       source.label + "; building by insertion " +
+                                       std::to_string(insert_ms / std::max(1, size)) + " ms/map; " +
+                                       std::to_string(tree.MemoryBytes() / std::size_t(next_id)) + " B/map in the tree, depth " +
+                                       std::to_string(tree.depth()) + ", " + std::to_string(matches) + " matches; peak RSS " +
+                                       std::to_string(PeakMemoryKb() / 1024) + " MiB");
     }
 }
 

@@ -23,6 +23,7 @@ struct CaseGroup {
 const CaseGroup kGroups[] = {
     {"end_to_end", EndToEndCases},   {"reader", ReaderCases},         {"odometry", OdometryCases},
     {"local_map", LocalMapCases},    {"closures", ClosureStageCases}, {"tree", TreeCases},
+    {"fleet_tree", FleetTreeCases},
     {"refinement", RefinementCases}, {"pose_graph", PoseGraphCases},  {"ground_truth", GroundTruthCases},
     {"consistency", ConsistencyCases}, {"report", ReportCases},
 };
@@ -45,6 +46,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.odometry_skip = 5;
         s.map_scans = 8;
         s.database_sizes = {10, 30};
+        s.fleet_database_sizes = {80};
         s.tree_queries = 3;
         s.graph_grid = {{300, 10}};
         s.consistency_maps = 100;
@@ -56,6 +58,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.odometry_scans = 50;
         s.map_scans = 60;
         s.database_sizes = {10, 100, 1000, 5000};
+        s.fleet_database_sizes = {1000, 5000};
         s.tree_queries = 20;
         s.graph_grid = {{500, 50}, {2000, 200}};
         s.gt_scans = 600;
@@ -66,6 +69,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.odometry_scans = 50;
         s.map_scans = 90;
         s.database_sizes = {10, 100, 1000, 5000, 10000, 20000, 50000};
+        s.fleet_database_sizes = {10000, 50000, 100000};
         s.tree_queries = 30;
         s.graph_grid = {{500, 50}, {2000, 50}, {2000, 200}, {2000, 1000}, {10000, 200}, {10000, 1000}};
         s.gt_scans = 2000;

@@ -19,6 +19,7 @@ struct SuiteScale {
     std::size_t map_scans = 60;                   ///< simulated 64-beam scans for the local-map cases
     std::vector<int> database_sizes;              ///< tree query+insert curve [maps]
     int tree_queries = 20;                        ///< timed query+insert per database size
+    std::vector<int> fleet_database_sizes;        ///< fleet_tree: maps of many sessions over many places
     std::vector<std::pair<int, int>> graph_grid;  ///< pose graph (nodes, closures)
     int consistency_maps = 1000;                  ///< maps of the online closure-consistency case
     std::size_t gt_scans = 300;                   ///< scans of the ground-truth closure case

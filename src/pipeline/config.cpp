@@ -177,6 +177,16 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     s.Add("output.elevation_ablation", &o.elevation_ablation, "", "score the elevation-image ablation when ground truth exists");
 }
 
+void BindFleet(ConfigSchema& s, PipelineConfig& c) {
+    auto& f = c.fleet;
+    s.Add("fleet.min_cross_closures", &f.min_cross_closures, "",
+          "merge: consistent cross-session closures needed to join two sessions", Range{1, 1000});
+    s.Add("fleet.slurm_cpus_per_task", &f.slurm_cpus_per_task, "", "batch --engine slurm: CPUs of each run task", Range{1, 1024});
+    s.Add("fleet.slurm_memory_mb", &f.slurm_memory_mb, "MiB", "batch --engine slurm: memory of each task", Range{64, 1e7});
+    s.Add("fleet.slurm_time_minutes", &f.slurm_time_minutes, "min", "batch --engine slurm: time limit of each task", Range{1, 1e6});
+    s.Add("fleet.slurm_partition", &f.slurm_partition, "", "batch --engine slurm: partition (empty: the cluster's default)");
+}
+
 }  // namespace
 
 ConfigSchema MakeConfigSchema(PipelineConfig& config) {
@@ -186,6 +196,7 @@ ConfigSchema MakeConfigSchema(PipelineConfig& config) {
     BindFeaturesAndMatching(schema, config);
     BindRefinementAndGraph(schema, config);
     BindEvaluationAndOutput(schema, config);
+    BindFleet(schema, config);
     return schema;
 }
 

@@ -52,6 +52,17 @@ struct OutputConfig {
     bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
 };
 
+/// Several sessions and many machines (issue 20): `revisit merge`, `run --against`, `revisit batch`.
+struct FleetConfig {
+    /// Two sessions are joined only by at least this many mutually consistent cross-session closures
+    /// (1 trusts a lone verified closure, which nothing else can check).
+    int min_cross_closures = 1;
+    int slurm_cpus_per_task = 2;     ///< `revisit batch --engine slurm`: --cpus-per-task of each run
+    int slurm_memory_mb = 4096;      ///< [MiB] --mem of each run and of the merge
+    int slurm_time_minutes = 120;    ///< [min] --time of each run and of the merge
+    std::string slurm_partition;     ///< --partition ("": the cluster's default)
+};
+
 /// The pose graph's defaults for the pipeline: graduated robustness on, because closures arrive far
 /// from drifted odometry (measured on the simulated demo city: APE 56.8 m -> 49.7 m without, 20.7 m
 /// with, the same 17 correct closures).
@@ -75,6 +86,7 @@ struct PipelineConfig {
     PredictedClosureConfig predicted;
     ScanContextConfig scan_context;
     OutputConfig output;
+    FleetConfig fleet;
     /// Keys a config file or --set gave a value (LoadConfig fills it): automatic settings leave them alone.
     std::set<std::string> explicit_keys;
     /// Settings derived from the data and why (src/pipeline/auto_settings.hpp), for config.yaml and run.json.

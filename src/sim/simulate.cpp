@@ -46,6 +46,10 @@ RevisitConfig RevisitsFor(const SimConfig& config) {
 
 }  // namespace
 
+std::uint64_t SessionSeed(const SimConfig& config) {
+    return config.session == 0 ? config.seed : config.seed + 1000003ULL * static_cast<std::uint64_t>(config.session);
+}
+
 SimPlan PlanSimulation(const SimConfig& config) {
     SimPlan plan;
     std::vector<Eigen::Vector2d> path;
@@ -63,17 +67,17 @@ SimPlan PlanSimulation(const SimConfig& config) {
     }
     if (!config.moving_cars) plan.world.moving_cars.clear();
     if (path.empty()) {
-        const auto nodes = PlanRoute(plan.world.streets, config.route, config.seed);
+        const auto nodes = PlanRoute(plan.world.streets, config.route, SessionSeed(config));
         path = RoutePath(plan.world.streets, nodes, plan.world.lane_offset, config.route.corner_radius);
     }
     MotionConfig motion = config.motion;
     motion.rate = config.sensor.rate;  // one pose per sweep: the sweep start is the previous pose
-    plan.trajectory = DrivePath(path, plan.world.ground, motion, config.seed);
+    plan.trajectory = DrivePath(path, plan.world.ground, motion, SessionSeed(config));
     if (config.max_scans > 0 && plan.trajectory.size() > config.max_scans) {
         plan.trajectory.poses.resize(config.max_scans);
         plan.trajectory.timestamps.resize(config.max_scans);
     }
-    if (config.odometry.enabled) plan.odometry = SimulateOdometry(plan.trajectory, config.odometry, config.seed);
+    if (config.odometry.enabled) plan.odometry = SimulateOdometry(plan.trajectory, config.odometry, SessionSeed(config));
     plan.revisits = FindRevisits(plan.trajectory.poses, RevisitsFor(config));
     return plan;
 }
@@ -114,7 +118,7 @@ SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, cons
             OrientedBox box = car.BoxAt(sweep.timestamp, plan.world.ground);
             if ((box.center - here).norm() < config.sensor.max_range + 5.0) sweep.dynamic_boxes.push_back(box);
         }
-        Scan scan = SimulateScan(caster, config.sensor, rays, sweep, config.seed);
+        Scan scan = SimulateScan(caster, config.sensor, rays, sweep, SessionSeed(config));
         if (!plan.odometry.empty()) scan.T_odom_sensor = plan.odometry[k];
         summary.points += scan.points.size();
         // Write scan k while scan k+1 is cast: one write in flight, files still written in order.
@@ -136,6 +140,7 @@ std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
     out << "# revisit simulate: everything needed to regenerate this sequence\n"
         << "preset: " << config.name << "\n"
         << "seed: " << config.seed << "\n"
+        << "session: " << config.session << "\n"
         << "world: " << WorldName(config.world) << "\n";
     if (config.world == WorldKind::kCity)
         out << "city: {blocks_x: " << config.city.blocks_x << ", blocks_y: " << config.city.blocks_y

@@ -31,7 +31,13 @@ struct SimConfig {
     OdometryNoiseConfig odometry;
     bool moving_cars = true;
     std::size_t max_scans = 0;         ///< 0: the whole route
+    /// Another session in the same world (issue 20): 0 is the preset's route; K > 0 keeps the world
+    /// (its seed) and draws the route, the drive, the sensor noise and the odometry from SessionSeed.
+    int session = 0;
 };
+
+/// The seed of everything but the world: `seed` for session 0, another per session.
+std::uint64_t SessionSeed(const SimConfig& config);
 
 /// World, trajectory and revisits of a configuration, before any ray is cast.
 struct SimPlan {
