@@ -54,6 +54,11 @@ struct HighwayConfig {
     double foliage_free_path = 0.8;    ///< [m] rays penetrate crowns (0: solid)
     double bush_spacing = 6.0;         ///< [m] mean gap between verge clutter items (bushes, hedges, posts) per side (0: none)
     double rail_post_spacing = 2.0;    ///< [m] guard rail posts (0: none)
+    // What makes a real highway registrable along the road (issue 15; KITTI 01): the verge changes.
+    double bank_probability = 0.5;     ///< share of the verge (in 30-120 m sections) with an earth bank or cutting (0: none)
+    double bank_height = 2.5;          ///< [m] mean height of a bank; it varies every 10 m
+    double tree_belt_probability = 0.35;  ///< share of the verge (in 40-150 m sections) lined with a belt of trees
+    double overpass_spacing = 1200.0;  ///< [m] mean spacing of bridges over the road (0: none)
     int moving_cars = 15;
 };
 

@@ -150,7 +150,9 @@ std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
             << "}\n";
     if (config.world == WorldKind::kHighway)
         out << "highway: {ring_radius: " << config.highway.ring_radius << ", road_half_width: " << config.highway.road_half_width
-            << "}\n";
+            << ", bank_probability: " << config.highway.bank_probability << ", bank_height: " << config.highway.bank_height
+            << ", tree_belt_probability: " << config.highway.tree_belt_probability
+            << ", overpass_spacing: " << config.highway.overpass_spacing << "}\n";
     if (config.world == WorldKind::kIndoor)
         out << "indoor: {rooms_x: " << config.indoor.rooms_x << ", rooms_y: " << config.indoor.rooms_y
             << ", room_size: " << config.indoor.room_size << "}\n";

@@ -175,6 +175,8 @@ RegistrationProbe ProbeRegistration(const ProbeSequence& sequence, int history, 
         const auto eigen = Eigen::SelfAdjointEigenSolver<Matrix6d>(H / n).eigenvalues();
         probe.jtj_min_eigen += eigen[0];
         probe.jtj_condition += eigen[5] / std::max(eigen[0], 1e-12);
+        const Matrix6d covariance = (H / n + 1e-9 * Matrix6d::Identity()).inverse();
+        probe.along_information += 1.0 / std::max(direction.dot(covariance.topLeftCorner<3, 3>() * direction), 1e-12);
 
         // The cost along the true motion (translation and rotation scaled together).
         const Vector6d xi = LogSE3(motion);
@@ -202,6 +204,7 @@ RegistrationProbe ProbeRegistration(const ProbeSequence& sequence, int history, 
         probe.ground_correspondence_share /= f;
         probe.jtj_min_eigen /= f;
         probe.jtj_condition /= f;
+        probe.along_information /= f;
         for (auto& c : probe.cost) c /= f;
         probe.zero_is_local_minimum /= f;
         probe.recovered /= f;

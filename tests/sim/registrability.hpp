@@ -38,6 +38,8 @@ struct RegistrationProbe {
     double residual_p90 = 0.0;         ///< [m]
     double jtj_min_eigen = 0.0;        ///< smallest eigenvalue of sum w J^T J / n at the true pose (kernel weights w)
     double jtj_condition = 0.0;        ///< its largest / smallest eigenvalue
+    double along_information = 0.0;    ///< 1 / (u^T (H/n)^-1 u), u the true direction of travel: how well the
+                                       ///< motion along the road is pinned once rotation and the other axes are free
     std::array<double, 7> cost{};      ///< robust cost at alpha * true motion, alpha = -0.5..1.0 step 0.25, / cost(0)
     double zero_is_local_minimum = 0.0;///< share of frames where cost(+-10 cm along the motion) > cost(0)
     double recovered = 0.0;            ///< ICP from zero motion: estimated / true forward motion (1 = right)
