@@ -61,6 +61,12 @@ struct MapRecord {
     std::vector<std::uint8_t> image_png;     ///< empty unless store_images
 };
 
+/// The vertical in a map's own frame (its levelled ground's normal; +z when not levelled): the
+/// direction along which the 3D refinement searches a closure's height.
+inline Eigen::Vector3d UpInMap(const MapRecord& record) {
+    return record.T_ground_map.linear().transpose() * Eigen::Vector3d::UnitZ();
+}
+
 /// Timings [ms] and counts of the last AddMap.
 struct AddMapStats {
     double ground_ms = 0, density_ms = 0, features_ms = 0, tree_ms = 0, ransac_ms = 0, total_ms = 0;

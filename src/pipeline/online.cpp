@@ -176,10 +176,8 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
     const auto ref_points = store_->Get(closure.ref_id);
     // Closures are verified as their query map is added: it is the detector's newest map. Its
     // levelling gives the vertical along which the closure's height is searched.
-    const MapRecord& query = detector_.maps().back();
-    const Eigen::Vector3d up_in_query = query.T_ground_map.linear().transpose() * Eigen::Vector3d::UnitZ();
-    record.refinement = RefineAlignment(ToDouble(ref_points), ToDouble(query_points),
-                                        Eigen::Isometry3d(closure.T_query_ref), config_.refinement, up_in_query);
+    record.refinement = RefineAlignment(ToDouble(ref_points), ToDouble(query_points), Eigen::Isometry3d(closure.T_query_ref),
+                                        config_.refinement, UpInMap(detector_.maps().back()));
     Time("refinement", MillisecondsSince(start));
     record.refined = true;
     record.accepted = record.refinement.accepted;

@@ -82,6 +82,7 @@ std::vector<CrossClosure> DetectCrossClosures(const std::vector<SessionRun>& ses
                 cross.query_session = closure.query_session;
                 cross.ref_session = closure.ref_session;
                 cross.closure = std::move(closure);
+                cross.up_in_query = UpInMap(joint.maps().back());
                 found.push_back(std::move(cross));
             }
         }
@@ -102,7 +103,7 @@ void RefineCrossClosures(const std::vector<SessionRun>& sessions, const Pipeline
     };
     for (auto& c : cross) {
         c.refinement = RefineAlignment(points_of(c.ref_session, c.closure.ref_id), points_of(c.query_session, c.closure.query_id),
-                                       Eigen::Isometry3d(c.closure.T_query_ref), config.refinement);
+                                       Eigen::Isometry3d(c.closure.T_query_ref), config.refinement, c.up_in_query);
         c.reason = c.refinement.accepted ? "" : c.refinement.reason;
     }
 }

@@ -37,6 +37,7 @@ struct CrossClosure {
     int query_session = 0;  ///< index into MergeResult::sessions
     int ref_session = 0;
     Closure closure;
+    Eigen::Vector3d up_in_query = Eigen::Vector3d::UnitZ();  ///< the query map's vertical (UpInMap)
     RefinementResult refinement;
     bool accepted = false;  ///< refined, consistent and kept by the joint graph
     std::string reason;     ///< why not accepted

@@ -13,6 +13,7 @@
 #include "optimization/global_map.hpp"
 #include "pipeline/csv.hpp"
 #include "pipeline/folder_map_store.hpp"
+#include "pipeline/merge_report.hpp"
 #include "pipeline/session_merge.hpp"
 #include "report/svg_plot.hpp"
 
@@ -136,6 +137,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
     result.joint_map_points = points.size();
     WriteCrossClosures(out / "cross_closures.csv", result);
     WriteFileAtomically(out / "sessions.svg", SessionsSvg(result));
+    WriteMergeReport(out, result);
 
     int candidates = 0, verified = 0, accepted = 0;
     for (const auto& c : result.cross) {

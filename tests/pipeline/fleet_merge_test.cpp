@@ -62,6 +62,12 @@ TEST(Merge, RunAgainstJoinsTheNewSessionAndMergeGivesTheSameInAnyOrder) {
     for (const char* file : {"sessions.json", "cross_closures.csv", "session_00_poses_kitti.txt", "session_01_poses_tum.txt"})
         EXPECT_EQ(ReadText(one / file), ReadText(two / file)) << file;
     EXPECT_EQ(ReadText(one / "sessions.json"), ReadText(run_b / "merge" / "sessions.json"));
+    // The merge's page: both sessions in their colours, connected, and the cross closures.
+    const std::string page = ReadText(one / "index.html");
+    EXPECT_EQ(page, ReadText(two / "index.html"));
+    EXPECT_NE(page.find("sessions.svg"), std::string::npos);
+    EXPECT_NE(page.find("Cross-session closures"), std::string::npos);
+    EXPECT_EQ(page.find(">NO<"), std::string::npos) << "both sessions are connected";
 }
 
 TEST(Merge, UnconnectedSessionsAndMissingOrCorruptRunsAreReported) {
