@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "odometry/parallel_filter.hpp"
 
 namespace revisit {
 namespace {
@@ -33,35 +37,70 @@ VoxelHashMap::VoxelHashMap(double voxel_size, int max_points_per_voxel)
       max_points_(std::max(1, max_points_per_voxel)),
       min_spacing2_(voxel_size * voxel_size / std::max(1, max_points_per_voxel)) {}
 
+bool VoxelHashMap::TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point) {
+    const int count = counts_[slot];
+    if (count >= max_points_) return false;
+    const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
+    const bool too_close = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& p) {
+        return (p - point).squaredNorm() < min_spacing2_;
+    });
+    if (too_close) return false;
+    points_[slot * max_points_ + count] = point;
+    ++counts_[slot];
+    return true;
+}
+
 void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
-    for (const auto& point : points) {
-        const Voxel voxel = VoxelOfInverse(point, inv_voxel_size_);
-        const auto [it, inserted] = index_.try_emplace(voxel, static_cast<std::uint32_t>(voxels_.size()));
-        if (inserted) {
-            voxels_.push_back(voxel);
-            counts_.push_back(1);
-            points_.resize(points_.size() + max_points_);
-            points_[static_cast<std::size_t>(it->second) * max_points_] = point;
+    // Same result as adding the points one by one in order, at any thread count (issue 19):
+    // 1. in parallel, each thread owns the voxels of its hash shard and adds, in input order, the
+    //    points that fall in voxels already in the map (the index is only read);
+    // 2. serially, in input order, the points of new voxels: new slots are numbered as before.
+    const std::size_t n = points.size();
+    const std::size_t num_shards = NumShards(n);
+    pending_.resize(n);
+    point_voxels_.resize(n);
+    point_shards_.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            point_voxels_[i] = VoxelOfInverse(points[i], inv_voxel_size_);
+            point_shards_[i] = static_cast<std::uint32_t>(ShardOf(point_voxels_[i], num_shards));
+        }
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_shards, 1), [&](const auto& range) {
+        for (std::size_t s = range.begin(); s != range.end(); ++s) {
+            for (std::size_t i = 0; i < n; ++i) {
+                if (point_shards_[i] != s) continue;
+                const auto it = index_.find(point_voxels_[i]);
+                pending_[i] = it == index_.end();
+                if (!pending_[i]) TryAddToSlot(it->second, points[i]);
+            }
+        }
+    });
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!pending_[i]) continue;
+        const auto [it, inserted] = index_.try_emplace(point_voxels_[i], static_cast<std::uint32_t>(voxels_.size()));
+        if (!inserted) {
+            TryAddToSlot(it->second, points[i]);
             continue;
         }
-        const std::size_t slot = it->second;
-        const int count = counts_[slot];
-        if (count >= max_points_) continue;
-        const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
-        const bool too_close = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& p) {
-            return (p - point).squaredNorm() < min_spacing2_;
-        });
-        if (too_close) continue;
-        points_[slot * max_points_ + count] = point;
-        ++counts_[slot];
+        voxels_.push_back(point_voxels_[i]);
+        counts_.push_back(1);
+        points_.resize(points_.size() + max_points_);
+        points_[static_cast<std::size_t>(it->second) * max_points_] = points[i];
     }
 }
 
 void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance) {
     const double max_distance2 = max_distance * max_distance;
+    // The distance test in parallel; the swap-removal below is the serial one, so slots end up the same.
+    far_.resize(voxels_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels_.size(), 8192), [&](const auto& range) {
+        for (std::size_t slot = range.begin(); slot != range.end(); ++slot)
+            far_[slot] = (points_[slot * max_points_] - origin).squaredNorm() > max_distance2;
+    });
     std::size_t slot = 0;
     while (slot < voxels_.size()) {
-        if ((points_[slot * max_points_] - origin).squaredNorm() <= max_distance2) {
+        if (!far_[slot]) {
             ++slot;
             continue;
         }
@@ -71,11 +110,13 @@ void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_dista
         if (slot != last) {
             voxels_[slot] = voxels_[last];
             counts_[slot] = counts_[last];
+            far_[slot] = far_[last];
             std::copy_n(points_.begin() + last * max_points_, counts_[last], points_.begin() + slot * max_points_);
             index_[voxels_[slot]] = static_cast<std::uint32_t>(slot);
         }
         voxels_.pop_back();
         counts_.pop_back();
+        far_.pop_back();
         points_.resize(points_.size() - max_points_);
     }
 }

@@ -24,7 +24,8 @@ class VoxelHashMap {
     /// reserves max_points_per_voxel points (24 bytes each), so keep that number small.
     VoxelHashMap(double voxel_size, int max_points_per_voxel);
 
-    /// Adds world-frame points; order matters (the first points of a voxel are kept).
+    /// Adds world-frame points; order matters (the first points of a voxel are kept). Parallel, with
+    /// the result of adding them one by one in order.
     void AddPoints(const std::vector<Eigen::Vector3d>& points);
     /// Drops voxels whose first point is farther than `max_distance` [m] from `origin`.
     void RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance);
@@ -43,6 +44,9 @@ class VoxelHashMap {
     double voxel_size() const { return voxel_size_; }
 
   private:
+    /// Adds `point` to the voxel in `slot` unless it is full or the point is too close to one of its points.
+    bool TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point);
+
     double voxel_size_;
     double inv_voxel_size_;
     int max_points_;
@@ -51,6 +55,11 @@ class VoxelHashMap {
     std::vector<Voxel> voxels_;                              ///< slot -> voxel
     std::vector<std::uint16_t> counts_;                      ///< slot -> number of points
     std::vector<Eigen::Vector3d> points_;                    ///< slot * max_points_ + k
+    // Buffers of AddPoints and RemoveFarFrom, kept between frames (no allocation per frame).
+    std::vector<Voxel> point_voxels_;
+    std::vector<std::uint32_t> point_shards_;
+    std::vector<std::uint8_t> pending_;  ///< the point's voxel was not in the map
+    std::vector<std::uint8_t> far_;      ///< per slot
 };
 
 }  // namespace revisit
