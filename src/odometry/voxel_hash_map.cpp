@@ -128,7 +128,8 @@ void VoxelHashMap::Clear() {
     points_.clear();
 }
 
-const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
+template <typename SlotOf>
+const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const {
     const Eigen::Vector3d scaled = query * inv_voxel_size_;
     const Eigen::Vector3d floor = scaled.array().floor();
     const Voxel centre = floor.cast<int>();
@@ -140,15 +141,15 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
 
     double best2 = max_distance * max_distance;
     const Eigen::Vector3d* best = nullptr;
-    for (const Voxel& offset : kOffsets) {
+    for (std::size_t k = 0; k < kOffsets.size(); ++k) {
+        const Voxel& offset = kOffsets[k];
         double box2 = 0.0;
         for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
         if (box2 >= best2) continue;
-        const auto it = index_.find(Voxel(centre + offset));
-        if (it == index_.end()) continue;
-        const std::size_t slot = it->second;
-        const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
-        const Eigen::Vector3d* end = begin + counts_[slot];
+        const std::int64_t slot = slot_of(centre, k);
+        if (slot < 0) continue;
+        const Eigen::Vector3d* begin = points_.data() + std::size_t(slot) * max_points_;
+        const Eigen::Vector3d* end = begin + counts_[std::size_t(slot)];
         for (const Eigen::Vector3d* p = begin; p != end; ++p) {
             const double d2 = (*p - query).squaredNorm();
             if (d2 < best2) {
@@ -158,6 +159,27 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
         }
     }
     return best;
+}
+
+const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
+    return Search(query, max_distance, [this](const Voxel& centre, std::size_t k) -> std::int64_t {
+        const auto it = index_.find(Voxel(centre + kOffsets[k]));
+        return it == index_.end() ? -1 : std::int64_t(it->second);
+    });
+}
+
+const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance,
+                                                 Neighbourhood& cache) const {
+    return Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
+        if (centre != cache.centre) {  // the query moved to another voxel: look its neighbours up once
+            cache.centre = centre;
+            for (std::size_t j = 0; j < kOffsets.size(); ++j) {
+                const auto it = index_.find(Voxel(centre + kOffsets[j]));
+                cache.slots[j] = it == index_.end() ? -1 : std::int32_t(it->second);
+            }
+        }
+        return cache.slots[k];
+    });
 }
 
 std::size_t VoxelHashMap::NumPoints() const {

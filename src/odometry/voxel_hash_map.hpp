@@ -2,6 +2,8 @@
 /// The odometry's local map: a voxel hash map with a bounded number of points per voxel
 /// (METHOD.md section 1). Points of a voxel are stored contiguously for cache-friendly search.
 #include <Eigen/Core>
+#include <array>
+#include <limits>
 #include <cstdint>
 #include <functional>
 #include <tsl/robin_map.h>
@@ -37,6 +39,16 @@ class VoxelHashMap {
     /// map changes.
     const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance) const;
 
+    /// The slots of the 27 voxels around one query voxel, kept between ICP iterations (issue 19): while
+    /// a point stays in the same voxel, its neighbours are not looked up again. Valid while the map
+    /// does not change; reset it (a default one) before each registration.
+    struct Neighbourhood {
+        Voxel centre = Voxel::Constant(std::numeric_limits<int>::min());
+        std::array<std::int32_t, 27> slots{};  ///< per neighbour offset, -1: no such voxel
+    };
+    /// FindNearest with `cache` for this query's neighbourhood: the same result, fewer hash lookups.
+    const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance, Neighbourhood& cache) const;
+
     bool Empty() const { return voxels_.empty(); }
     std::size_t NumVoxels() const { return voxels_.size(); }
     std::size_t NumPoints() const;
@@ -44,6 +56,9 @@ class VoxelHashMap {
     double voxel_size() const { return voxel_size_; }
 
   private:
+    /// FindNearest over the neighbour voxels `slot_of(centre, k)` gives (-1: none), k in visiting order.
+    template <typename SlotOf>
+    const Eigen::Vector3d* Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const;
     /// Adds `point` to the voxel in `slot` unless it is full or the point is too close to one of its points.
     bool TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point);
 

@@ -86,5 +86,28 @@ TEST(VoxelHashMap, AddingABatchEqualsAddingPointByPointAtAnyThreadCount) {
     }
 }
 
+TEST(VoxelHashMap, NeighbourhoodCacheGivesTheSameNearestPointAsTheLookup) {
+    const auto scan = ScanLike(9);
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& p : scan)
+        if (p.allFinite()) points.push_back(p.cast<double>());
+    VoxelHashMap map(1.0, 20);
+    map.AddPoints(points);
+    // Queries drifting by a few cm per "iteration", as source points do during ICP: most stay in
+    // their voxel (the cache answers), some cross into the next one (the cache refills).
+    std::vector<Eigen::Vector3d> queries(points.begin(), points.begin() + 3000);
+    std::vector<VoxelHashMap::Neighbourhood> caches(queries.size());
+    std::size_t found = 0;
+    for (int iteration = 0; iteration < 6; ++iteration) {
+        for (std::size_t i = 0; i < queries.size(); ++i) {
+            queries[i] += Eigen::Vector3d(0.07, -0.05, 0.02);
+            const Eigen::Vector3d* expected = map.FindNearest(queries[i], 2.0);
+            ASSERT_EQ(map.FindNearest(queries[i], 2.0, caches[i]), expected) << "query " << i;
+            found += expected != nullptr;
+        }
+    }
+    EXPECT_GT(found, 6 * 2900u);
+}
+
 }  // namespace
 }  // namespace revisit
