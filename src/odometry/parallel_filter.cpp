@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/error.hpp"
+#include "odometry/preprocess.hpp"
 
 namespace revisit {
 namespace {
@@ -39,6 +40,10 @@ void ParallelFilter::Crop(const std::vector<Eigen::Vector3f>& points, double min
                           std::vector<Eigen::Vector3d>& out, std::vector<std::size_t>* kept) {
     const double min2 = min_range * min_range, max2 = max_range * max_range;
     const std::size_t n = points.size();
+    if (NumShards(n) == 1) {  // small scans: the serial definition, no tasks
+        out = CropRange(points, min_range, max_range, kept);
+        return;
+    }
     keep_.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -63,6 +68,10 @@ void ParallelFilter::Downsample(const std::vector<Eigen::Vector3d>& points, doub
     const double inv_voxel_size = 1.0 / voxel_size;
     const std::size_t n = points.size();
     const std::size_t num_shards = NumShards(n);
+    if (num_shards == 1) {
+        out = VoxelDownsample(points, voxel_size);
+        return;
+    }
     keep_.resize(n);
     voxels_.resize(n);
     shards_.resize(n);

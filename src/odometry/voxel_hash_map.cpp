@@ -57,6 +57,10 @@ void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
     // 2. serially, in input order, the points of new voxels: new slots are numbered as before.
     const std::size_t n = points.size();
     const std::size_t num_shards = NumShards(n);
+    if (num_shards == 1) {  // small batches (2D scans, sparse sensors): the plain loop, no tasks
+        for (const auto& point : points) AddPoint(point);
+        return;
+    }
     pending_.resize(n);
     point_voxels_.resize(n);
     point_shards_.resize(n);
@@ -76,18 +80,22 @@ void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
             }
         }
     });
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!pending_[i]) continue;
-        const auto [it, inserted] = index_.try_emplace(point_voxels_[i], static_cast<std::uint32_t>(voxels_.size()));
-        if (!inserted) {
-            TryAddToSlot(it->second, points[i]);
-            continue;
-        }
-        voxels_.push_back(point_voxels_[i]);
-        counts_.push_back(1);
-        points_.resize(points_.size() + max_points_);
-        points_[static_cast<std::size_t>(it->second) * max_points_] = points[i];
+    for (std::size_t i = 0; i < n; ++i)
+        if (pending_[i]) AddPoint(points[i], point_voxels_[i]);
+}
+
+void VoxelHashMap::AddPoint(const Eigen::Vector3d& point) { AddPoint(point, VoxelOfInverse(point, inv_voxel_size_)); }
+
+void VoxelHashMap::AddPoint(const Eigen::Vector3d& point, const Voxel& voxel) {
+    const auto [it, inserted] = index_.try_emplace(voxel, static_cast<std::uint32_t>(voxels_.size()));
+    if (!inserted) {
+        TryAddToSlot(it->second, point);
+        return;
     }
+    voxels_.push_back(voxel);
+    counts_.push_back(1);
+    points_.resize(points_.size() + max_points_);
+    points_[static_cast<std::size_t>(it->second) * max_points_] = point;
 }
 
 void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance) {
@@ -171,12 +179,14 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
 const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance,
                                                  Neighbourhood& cache) const {
     return Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
-        if (centre != cache.centre) {  // the query moved to another voxel: look its neighbours up once
+        if (centre != cache.centre) {  // the query moved to another voxel: forget the old neighbours
             cache.centre = centre;
-            for (std::size_t j = 0; j < kOffsets.size(); ++j) {
-                const auto it = index_.find(Voxel(centre + kOffsets[j]));
-                cache.slots[j] = it == index_.end() ? -1 : std::int32_t(it->second);
-            }
+            cache.slots.fill(Neighbourhood::kUnknown);
+        }
+        // Looked up when first needed (pruned voxels never are), at most once per centre.
+        if (cache.slots[k] == Neighbourhood::kUnknown) {
+            const auto it = index_.find(Voxel(centre + kOffsets[k]));
+            cache.slots[k] = it == index_.end() ? -1 : std::int32_t(it->second);
         }
         return cache.slots[k];
     });

@@ -43,6 +43,7 @@ class VoxelHashMap {
     /// a point stays in the same voxel, its neighbours are not looked up again. Valid while the map
     /// does not change; reset it (a default one) before each registration.
     struct Neighbourhood {
+        static constexpr std::int32_t kUnknown = -2;  ///< not looked up yet
         Voxel centre = Voxel::Constant(std::numeric_limits<int>::min());
         std::array<std::int32_t, 27> slots{};  ///< per neighbour offset, -1: no such voxel
     };
@@ -59,6 +60,9 @@ class VoxelHashMap {
     /// FindNearest over the neighbour voxels `slot_of(centre, k)` gives (-1: none), k in visiting order.
     template <typename SlotOf>
     const Eigen::Vector3d* Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const;
+    /// One point, as the serial definition adds it (a new voxel gets the next slot).
+    void AddPoint(const Eigen::Vector3d& point);
+    void AddPoint(const Eigen::Vector3d& point, const Voxel& voxel);
     /// Adds `point` to the voxel in `slot` unless it is full or the point is too close to one of its points.
     bool TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point);
 
