@@ -1,6 +1,7 @@
 /// `revisit bench [--suite quick|full] [--out FILE.json] [--compare OLD.json] [--reference REF.json]`: speed
 /// of every stage and of the whole chain (issue 10), printed as a table and written as JSON. Missing real
 /// data fails the command unless --skip-missing (issue 19).
+#include <algorithm>
 #include <iostream>
 
 #include "benchmark/record.hpp"
@@ -50,9 +51,15 @@ int RunBench(const BenchCommandOptions& o) {
                   << reference->machine.build_type << ")\n"
                   << FormatStageRatios(StageRatios(CompareRecords(*reference, record)));
     }
-    // Cases that did not run make the figures incomplete: a failure unless skipping was asked.
+    // Cases that did not run make the figures incomplete: missing data fails unless skipping was asked,
+    // a case that could not run for another reason (too few matches, too few scans) always fails.
     BenchFailures failures;
-    for (const auto& s : record.skipped) failures.NoteMissing(s);
+    for (const auto& s : record.skipped) {
+        const bool missing = s.find(" absent") != std::string::npos || s.find("no data folder") != std::string::npos ||
+                             s.find("no --data") != std::string::npos;
+        if (missing) failures.NoteMissing(s);
+        else failures.NoteFailed(s.substr(0, s.find(':')), s.substr(std::min(s.size(), s.find(':') + 2)));
+    }
     if (!failures.empty()) std::cerr << failures.Report(o.skip_missing);
     return failures.ExitCode(o.skip_missing);
 }
