@@ -1,5 +1,7 @@
-/// `revisit bench [--suite quick|full] [--out FILE.json] [--compare OLD.json]`: speed of every stage and
-/// of the whole chain (issue 10), printed as a table and written as JSON.
+/// `revisit bench [--suite quick|full] [--out FILE.json] [--compare OLD.json] [--reference REF.json]`: speed
+/// of every stage and of the whole chain (issue 10), printed as a table and written as JSON. Missing real
+/// data fails the command unless --skip-missing (issue 19).
+#include <algorithm>
 #include <iostream>
 
 #include "benchmark/record.hpp"
@@ -11,8 +13,9 @@ namespace revisit::app {
 namespace {
 struct BenchCommandOptions {
     BenchOptions bench;
-    std::string data, out, compare;
+    std::string data, out, compare, reference;
     int threads = 0;
+    bool skip_missing = SkipMissingFromEnvironment();
 };
 
 int RunBench(const BenchCommandOptions& o) {
@@ -22,6 +25,14 @@ int RunBench(const BenchCommandOptions& o) {
     bench.progress = [](const std::string& group) { ShowProgress("bench: " + group); };
     // Read the old record first: a bad file should fail before minutes of measuring.
     const std::optional<BenchRecord> old = o.compare.empty() ? std::nullopt : std::optional(ReadRecord(o.compare));
+    const std::optional<BenchRecord> reference =
+        o.reference.empty() ? std::nullopt : std::optional(ReadRecord(o.reference));
+    if (!o.skip_missing && !std::filesystem::exists(bench.data_dir)) {
+        std::cerr << "revisit bench: data folder " << bench.data_dir.string()
+                  << " absent: the real-data cases cannot run. Give it with --data DIR or REVISIT_DATA, or skip "
+                     "those cases with --skip-missing (REVISIT_SKIP_MISSING=1)\n";
+        return 2;
+    }
     const BenchRecord record = RunSuite(bench);
     EndProgress();
     std::cout << FormatRecord(record);
@@ -34,7 +45,23 @@ int RunBench(const BenchCommandOptions& o) {
                   << old->machine.cores << " cores, " << old->machine.build_type << ")\n"
                   << FormatComparison(CompareRecords(*old, record));
     }
-    return 0;
+    if (reference) {
+        std::cout << "\nper stage against the reference " << o.reference << " (suite " << reference->suite << ", "
+                  << reference->started_utc << ", " << reference->machine.cores << " cores, "
+                  << reference->machine.build_type << ")\n"
+                  << FormatStageRatios(StageRatios(CompareRecords(*reference, record)));
+    }
+    // Cases that did not run make the figures incomplete: missing data fails unless skipping was asked,
+    // a case that could not run for another reason (too few matches, too few scans) always fails.
+    BenchFailures failures;
+    for (const auto& s : record.skipped) {
+        const bool missing = s.find(" absent") != std::string::npos || s.find("no data folder") != std::string::npos ||
+                             s.find("no --data") != std::string::npos;
+        if (missing) failures.NoteMissing(s);
+        else failures.NoteFailed(s.substr(0, s.find(':')), s.substr(std::min(s.size(), s.find(':') + 2)));
+    }
+    if (!failures.empty()) std::cerr << failures.Report(o.skip_missing);
+    return failures.ExitCode(o.skip_missing);
 }
 }  // namespace
 
@@ -46,12 +73,15 @@ void AddBenchCommand(CLI::App& root, Action& action) {
         "Each figure: median, min, max and spread over repeated runs after a warm-up, with the core count and\n"
         "build type. Generated data (simulator presets) always; real data (KITTI 00 scans, radish rawlogs)\n"
         "when --data exists. quick: under 3 minutes on 2 cores; full: larger sizes, ~15 minutes (it prints\n"
-        "its duration). --compare prints new/old ratios: judge a change by ratios measured on one machine.\n"
+        "its duration). --compare prints new/old ratios and marks figures SLOWER beyond both runs' spread;\n"
+        "--reference prints the speedup per stage against a record from another build. Judge a change by ratios\n"
+        "measured on one machine. Missing real data (a case that cannot run) exits 2 unless --skip-missing.\n"
         "Examples:\n"
         "  revisit bench --out before.json\n"
         "  revisit bench --compare before.json --out after.json\n"
         "  revisit bench --suite full --threads 2 --out full.json\n"
-        "  revisit bench --only odometry,tree");
+        "  revisit bench --only odometry,tree\n"
+        "  revisit bench --reference release-0.1.json --skip-missing");
     cmd->add_option("--suite", o->bench.suite, "quick, full or tiny (seconds; for tests)")
         ->check(CLI::IsMember(SuiteNames()))
         ->capture_default_str();
@@ -59,8 +89,14 @@ void AddBenchCommand(CLI::App& root, Action& action) {
     cmd->add_option("--compare", o->compare, "an earlier record (JSON): print new/old ratios")
         ->check(CLI::ExistingFile);
     cmd->add_option("--data", o->data,
-                    "folder with kitti00_first16/ and radish/ (real-data cases; skipped when absent)")
+                    "folder with kitti00_first16/ and radish/ (real-data cases); default $REVISIT_DATA, else "
+                    "../shared/data")
         ->capture_default_str();
+    cmd->add_flag("--skip-missing", o->skip_missing,
+                  "skip the cases whose data is absent (listed) instead of failing (exit 2); also REVISIT_SKIP_MISSING=1");
+    cmd->add_option("--reference", o->reference,
+                    "a record (JSON) from another build or machine: print per stage the speedup against it")
+        ->check(CLI::ExistingFile);
     cmd->add_option("--threads", o->threads, "TBB threads for the whole run (0: all cores); the '1t' figures use 1");
     cmd->add_option("--only", o->bench.groups, "only these case groups")
         ->delimiter(',')

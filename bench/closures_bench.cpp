@@ -1,8 +1,9 @@
 /// Closure detection speed and memory on real KITTI local maps (issue 5):
 /// per-map ground alignment, density image, ORB, tree query+insert at 10 / 100 / 1,000 / 10,000 stored maps,
 /// RANSAC per candidate, the total per map, and bytes per stored map.
-/// Needs ../shared/data/kitti00_first16; prints a note and exits otherwise.
-#include <benchmark/benchmark.h>
+/// Needs <data>/kitti00_first16 (--data DIR, $REVISIT_DATA, else ../shared/data): without it every case
+/// is reported as not run and the exit code is 2 (0 with --skip-missing).
+#include "bench_main.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -19,7 +20,7 @@
 namespace revisit {
 namespace {
 
-const std::filesystem::path kKitti = std::filesystem::path(REVISIT_SHARED_DIR) / "data" / "kitti00_first16";
+std::filesystem::path KittiDir() { return bench::DataDir() / "kitti00_first16"; }
 
 Eigen::Isometry3d ParsePose34(const std::string& line, int skip) {
     std::istringstream s(line);
@@ -32,7 +33,7 @@ Eigen::Isometry3d ParsePose34(const std::string& line, int skip) {
 }
 
 LocalMap KittiMap(int first, int last, int id) {
-    std::ifstream calib(kKitti / "calib.txt"), poses_file(kKitti / "poses.txt");
+    std::ifstream calib(KittiDir() / "calib.txt"), poses_file(KittiDir() / "poses.txt");
     std::string line;
     Eigen::Isometry3d Tr = Eigen::Isometry3d::Identity();
     while (std::getline(calib, line))
@@ -46,7 +47,7 @@ LocalMap KittiMap(int first, int last, int id) {
     for (int i = first; i <= last; ++i) {
         char name[32];
         std::snprintf(name, sizeof(name), "%06d.bin", i);
-        std::ifstream in(kKitti / "velodyne" / name, std::ios::binary);
+        std::ifstream in(KittiDir() / "velodyne" / name, std::ios::binary);
         std::vector<Eigen::Vector3f> points;
         float v[4];
         while (in.read(reinterpret_cast<char*>(v), sizeof(v))) {
@@ -116,17 +117,20 @@ std::shared_ptr<ClosureDetector> Database(int n, const ClosureDetectorConfig& co
 }
 
 void BM_GroundAlignment(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     const auto& map = GetData().query;
     for (auto _ : state) benchmark::DoNotOptimize(AlignGround(map.points));
     state.counters["points"] = double(map.points.size());
 }
 
 void BM_DensityImage(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     const auto& map = GetData().query;
     for (auto _ : state) benchmark::DoNotOptimize(ComputeDensityImage(map.points));
 }
 
 void BM_Orb(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     const auto image = ComputeDensityImage(GetData().query.points).image;
     std::size_t keypoints = 0;
     for (auto _ : state) keypoints = ComputeFeatures(image).keypoints.size();
@@ -134,17 +138,20 @@ void BM_Orb(benchmark::State& state) {
     state.counters["pixels"] = double(image.total());
 }
 
-void BM_TreeQueryInsert(benchmark::State& state) {
+/// Query of one real descriptor set against `n` stored maps. The tree stays at `n` maps: Match does not
+/// insert, so every iteration measures the same database size.
+void BM_TreeQuery(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     const int n = int(state.range(0));
     const auto config = ClosureDetectorConfig::Paper();
     auto database = Database(n, config);
-    HammingTree tree = database->tree();  // a copy: grows by a few maps during the run, negligible
+    const HammingTree& tree = database->tree();
     const auto& query = GetData().variants[5].features.descriptors;
     std::size_t matches = 0;
-    int id = 0;
-    for (auto _ : state) matches = tree.MatchAndAdd(query, 2000000 + id++).size();
+    for (auto _ : state) matches = tree.Match(query).size();
     state.counters["matches"] = double(matches);
     state.counters["depth"] = tree.depth();
+    state.counters["stored_maps"] = double(database->maps().size());
     const double maps = double(database->maps().size());
     std::size_t image_bytes = 0, keypoint_bytes = 0;
     for (const auto& r : database->maps()) image_bytes += r.image_png.capacity(), keypoint_bytes += r.keypoints.capacity() * 8;
@@ -154,9 +161,31 @@ void BM_TreeQueryInsert(benchmark::State& state) {
     state.counters["kp_B_map"] = double(keypoint_bytes) / maps;
 }
 
+/// Query and insert (the detector's per-map step) at exactly `n` stored maps: each iteration starts
+/// from a copy of the n-map tree, made outside the timed region.
+void BM_TreeQueryInsert(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
+    const int n = int(state.range(0));
+    auto database = Database(n, ClosureDetectorConfig::Paper());
+    const auto& query = GetData().variants[5].features.descriptors;
+    std::size_t matches = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        auto tree = std::make_unique<HammingTree>(database->tree());
+        state.ResumeTiming();
+        matches = tree->MatchAndAdd(query, 2000000).size();
+        state.PauseTiming();
+        tree.reset();  // freeing the copy is not part of the insert
+        state.ResumeTiming();
+    }
+    state.counters["matches"] = double(matches);
+    state.counters["stored_maps"] = double(database->maps().size());
+}
+
 /// The whole per-map insert (ground alignment, density image, ORB, tree query and insert), without
 /// RANSAC, which is counted per candidate below.
 void BM_AddMapWithoutRansac(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     const int n = int(state.range(0));
     auto config = ClosureDetectorConfig::Paper();
     config.align_ground = state.range(1) != 0;
@@ -166,11 +195,18 @@ void BM_AddMapWithoutRansac(benchmark::State& state) {
     const auto descriptors = base->AllDescriptors();
     for (std::size_t m = 0; m < base->maps().size(); ++m) database->Restore(base->maps()[m], descriptors[m]);
     LocalMap query = GetData().query;
+    query.id = n + 1;
     AddMapStats sum;
     for (auto _ : state) {
-        query.id++;
-        database->AddMap(query);
-        const auto& s = database->last_stats();
+        // Every iteration adds to the same n-map database: a copy made outside the timed region.
+        state.PauseTiming();
+        auto copy = std::make_unique<ClosureDetector>(*database);
+        state.ResumeTiming();
+        copy->AddMap(query);
+        state.PauseTiming();
+        const auto s = copy->last_stats();
+        copy.reset();
+        state.ResumeTiming();
         sum.ground_ms += s.ground_ms, sum.density_ms += s.density_ms, sum.features_ms += s.features_ms;
         sum.tree_ms += s.tree_ms, sum.total_ms += s.total_ms;
     }
@@ -185,6 +221,7 @@ void BM_AddMapWithoutRansac(benchmark::State& state) {
 /// Storing the density image PNG-compressed (ClosureDetectorConfig::store_images): the default
 /// strategy by compression level (Arg 0-9), and the run-length strategy the detector uses (Arg -1).
 void BM_StoreImagePng(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     const auto image = ComputeDensityImage(GetData().query.points).image;
     const int level = int(state.range(0));
     std::vector<std::uint8_t> png;
@@ -197,6 +234,7 @@ void BM_StoreImagePng(benchmark::State& state) {
 
 /// RANSAC of one real candidate (KITTI 0-7 against 8-15) with the paper's and the later trial counts.
 void BM_RansacPerCandidate(benchmark::State& state) {
+    if (!bench::NeedData(state, KittiDir())) return;
     auto config = state.range(0) == 0 ? ClosureDetectorConfig::Paper() : ClosureDetectorConfig::Later();
     config.skip_recent_maps = 0;
     ClosureDetector detector(config);
@@ -232,6 +270,7 @@ void BM_RansacPerCandidate(benchmark::State& state) {
 BENCHMARK(BM_GroundAlignment)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DensityImage)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Orb)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TreeQuery)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Iterations(20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TreeQueryInsert)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Iterations(20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AddMapWithoutRansac)
     ->Args({10, 0})->Args({100, 0})->Args({1000, 0})->Args({1000, 1})->Args({10000, 0})
@@ -242,12 +281,4 @@ BENCHMARK(BM_RansacPerCandidate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 }  // namespace
 }  // namespace revisit
 
-int main(int argc, char** argv) {
-    if (!std::filesystem::exists(revisit::kKitti)) {
-        std::printf("closures_bench: %s absent, nothing to measure\n", revisit::kKitti.c_str());
-        return 0;
-    }
-    benchmark::Initialize(&argc, argv);
-    benchmark::RunSpecifiedBenchmarks();
-    return 0;
-}
+REVISIT_BENCHMARK_MAIN()

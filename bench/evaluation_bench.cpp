@@ -1,6 +1,7 @@
 // Speed of the evaluation module on a KITTI-sized sequence (issue 7: ground truth for a 4,500-scan
 // sequence in under 2 minutes on 2 cores). Route: KITTI 00 ground truth (4,541 poses, 3.7 km, many
-// revisits) from ../shared when present, else a synthetic multi-lap loop of 4,500 scans. Scans: the 16
+// revisits) from <data>/kitti_gt_poses (--data, $REVISIT_DATA, else ../shared/data); absent, the case fails
+// unless --skip-missing, which runs it on a synthetic multi-lap loop of 4,500 scans instead (counter real_route 0). Scans: the 16
 // real HDL-64E scans of KITTI 00 cycled over the poses (scan i % 16 at pose i) when present, else one
 // synthetic 64-beam, 1,800-column cloud (115,200 points, ground ring + walls 8-30 m away) at every pose:
 // the cost per scan matches a real scan; the overlaps themselves are not meaningful.
@@ -8,7 +9,7 @@
 #include "evaluation/ground_truth_closures.hpp"
 #include "evaluation/scan_context.hpp"
 
-#include <benchmark/benchmark.h>
+#include "bench_main.hpp"
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -20,8 +21,15 @@
 namespace revisit {
 namespace {
 
-Poses KittiRouteOrSynthetic() {
-    const std::filesystem::path file = std::filesystem::path(REVISIT_SHARED_DIR) / "data/kitti_gt_poses/00.txt";
+/// The KITTI 00 route, or with --skip-missing a synthetic stand-in; empty (case skipped) when the route
+/// is missing and skipping was not asked.
+Poses KittiRouteOrSynthetic(benchmark::State& state) {
+    const std::filesystem::path file = bench::DataDir() / "kitti_gt_poses/00.txt";
+    if (!std::filesystem::exists(file) && !bench::DataOptions().skip_missing) {
+        bench::SkipForMissingData(state, file);
+        return {};
+    }
+    state.counters["real_route"] = std::filesystem::exists(file) ? 1.0 : 0.0;
     Poses poses;
     std::ifstream in(file);
     // KITTI camera frame (x right, y down, z forward) to a lidar-like frame (x forward, y left, z up).
@@ -59,9 +67,13 @@ std::vector<Eigen::Vector3f> SyntheticHdl64Cloud() {
     return points;
 }
 
-std::vector<std::vector<Eigen::Vector3f>> RealScansOrSynthetic() {
+std::vector<std::vector<Eigen::Vector3f>> RealScansOrSynthetic(benchmark::State& state) {
     std::vector<std::vector<Eigen::Vector3f>> scans;
-    const std::filesystem::path folder = std::filesystem::path(REVISIT_SHARED_DIR) / "data/kitti00_first16/velodyne";
+    const std::filesystem::path folder = bench::DataDir() / "kitti00_first16/velodyne";
+    if (!std::filesystem::exists(folder) && !bench::DataOptions().skip_missing) {
+        bench::SkipForMissingData(state, folder);
+        return scans;
+    }
     for (int i = 0; i < 16; ++i) {
         char name[32];
         std::snprintf(name, sizeof(name), "%06d.bin", i);
@@ -79,8 +91,10 @@ std::vector<std::vector<Eigen::Vector3f>> RealScansOrSynthetic() {
 }
 
 void BM_GroundTruthClosures(benchmark::State& state) {
-    const Poses poses = KittiRouteOrSynthetic();
-    const std::vector<std::vector<Eigen::Vector3f>> scans = RealScansOrSynthetic();
+    const Poses poses = KittiRouteOrSynthetic(state);
+    if (poses.empty()) return;
+    const std::vector<std::vector<Eigen::Vector3f>> scans = RealScansOrSynthetic(state);
+    if (scans.empty()) return;
     GtClosureConfig config;
     config.voxel_subsample = static_cast<std::size_t>(state.range(0));
     GtClosures closures;
@@ -98,7 +112,8 @@ void BM_GroundTruthClosures(benchmark::State& state) {
 BENCHMARK(BM_GroundTruthClosures)->Arg(1)->Arg(4)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 void BM_ScanContextSequence(benchmark::State& state) {
-    const Poses poses = KittiRouteOrSynthetic();
+    const Poses poses = KittiRouteOrSynthetic(state);
+    if (poses.empty()) return;
     const std::vector<Eigen::Vector3f> cloud = SyntheticHdl64Cloud();
     const ScanContextConfig config;
     for (auto _ : state) {
@@ -112,7 +127,8 @@ void BM_ScanContextSequence(benchmark::State& state) {
 BENCHMARK(BM_ScanContextSequence)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 void BM_ScanContextSearchOnly(benchmark::State& state) {
-    const std::size_t num_scans = KittiRouteOrSynthetic().size();
+    const std::size_t num_scans = KittiRouteOrSynthetic(state).size();
+    if (num_scans == 0) return;
     const ScanContextConfig config;
     // Distinct descriptors (random heights), so the ring-key search and the shift search do real work.
     std::vector<ScanContextDescriptor> descriptors(num_scans);
@@ -128,4 +144,4 @@ BENCHMARK(BM_ScanContextSearchOnly)->Unit(benchmark::kSecond)->Iterations(1)->Us
 }  // namespace
 }  // namespace revisit
 
-BENCHMARK_MAIN();
+REVISIT_BENCHMARK_MAIN()

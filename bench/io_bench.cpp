@@ -1,5 +1,5 @@
 /// Reader throughput on real KITTI scans (issue: a 120k-point scan must read in under 5 ms).
-#include <benchmark/benchmark.h>
+#include "bench_main.hpp"
 
 #include <filesystem>
 
@@ -7,14 +7,11 @@
 #include "io/reader.hpp"
 
 namespace {
-const std::filesystem::path kKitti = std::filesystem::path(REVISIT_SHARED_DIR) / "data/kitti00_first16";
+std::filesystem::path KittiDir() { return revisit::bench::DataDir() / "kitti00_first16"; }
 
 void BM_LoadKittiBin(benchmark::State& state) {
-    const auto file = kKitti / "velodyne/000000.bin";
-    if (!std::filesystem::exists(file)) {
-        state.SkipWithError("../shared/data/kitti00_first16 not available");
-        return;
-    }
+    const auto file = KittiDir() / "velodyne/000000.bin";
+    if (!revisit::bench::NeedData(state, file)) return;
     std::size_t points = 0;
     for (auto _ : state) {
         const auto cloud = revisit::LoadKittiBin(file);
@@ -27,13 +24,10 @@ void BM_LoadKittiBin(benchmark::State& state) {
 BENCHMARK(BM_LoadKittiBin)->Unit(benchmark::kMillisecond);
 
 void BM_KittiReaderSequence(benchmark::State& state) {
-    if (!std::filesystem::exists(kKitti)) {
-        state.SkipWithError("../shared/data/kitti00_first16 not available");
-        return;
-    }
+    if (!revisit::bench::NeedData(state, KittiDir())) return;
     std::size_t scans = 0;
     for (auto _ : state) {
-        auto reader = revisit::OpenDataset(kKitti);
+        auto reader = revisit::OpenDataset(KittiDir());
         while (auto scan = reader->Next()) ++scans;
     }
     state.counters["scans/s"] = benchmark::Counter(static_cast<double>(scans), benchmark::Counter::kIsRate);
@@ -41,4 +35,4 @@ void BM_KittiReaderSequence(benchmark::State& state) {
 BENCHMARK(BM_KittiReaderSequence)->Unit(benchmark::kMillisecond);
 }  // namespace
 
-BENCHMARK_MAIN();
+REVISIT_BENCHMARK_MAIN()

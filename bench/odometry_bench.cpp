@@ -2,7 +2,7 @@
 /// 2 TBB threads. Counters: median_ms_per_scan (wall), median_cpu_ms_per_scan (process CPU, all
 /// threads), end_x_m (position of the last frame).
 /// Build: link revisit_odometry, revisit_core, TBB, benchmark, and tests/odometry/synthetic_world.cpp.
-#include <benchmark/benchmark.h>
+#include "bench_main.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -15,18 +15,16 @@
 #include "odometry/lidar_odometry.hpp"
 #include "odometry/synthetic_world.hpp"
 
-#ifndef REVISIT_SHARED_DIR
-#define REVISIT_SHARED_DIR "../shared"
-#endif
-
 namespace revisit {
 namespace {
+
+std::filesystem::path KittiVelodyne() { return bench::DataDir() / "kitti00_first16" / "velodyne"; }
 
 /// The 16 KITTI scans with the 0.205 degree correction, or nothing when the data is absent.
 const std::vector<Scan>& KittiScans() {
     static const std::vector<Scan> scans = [] {
         std::vector<Scan> loaded;
-        const auto dir = std::filesystem::path(REVISIT_SHARED_DIR) / "data" / "kitti00_first16" / "velodyne";
+        const auto dir = KittiVelodyne();
         for (int i = 0; i < 16; ++i) {
             char name[32];
             std::snprintf(name, sizeof(name), "%06d.bin", i);
@@ -82,7 +80,7 @@ double CpuMs() {
 
 void RunSequence(benchmark::State& state, const std::vector<Scan>& scans) {
     if (scans.empty()) {
-        state.SkipWithError("no scans (REVISIT_SHARED_DIR/data/kitti00_first16 missing)");
+        bench::SkipForMissingData(state, KittiVelodyne());
         return;
     }
     const int threads = static_cast<int>(state.range(0));
@@ -122,4 +120,4 @@ BENCHMARK(BM_OdometrySimulated64)->Args({1, 0})->Args({2, 0})->Unit(benchmark::k
 }  // namespace
 }  // namespace revisit
 
-BENCHMARK_MAIN();
+REVISIT_BENCHMARK_MAIN()

@@ -1,6 +1,6 @@
 /// Speed of the optimization module (issue 6): a 1,000-node graph with 200 closures, and the
 /// refinement of one closure between ~100 m maps. Fixtures come from tests/optimization.
-#include <benchmark/benchmark.h>
+#include "bench_main.hpp"
 #include <tbb/global_control.h>
 
 #include <filesystem>
@@ -55,11 +55,9 @@ BENCHMARK(BM_OptimizePoseGraph)->Args({1, 0, 0})->Args({2, 0, 0})->Args({2, 20, 
 /// moved by a known pose, the guess off by 0.5 m and 2 degrees.
 void BM_RefineAlignmentKitti(benchmark::State& state) {
     const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
-    const auto scan = testing::ReadKittiBin(testing::Kitti00First16() / "velodyne/000000.bin");
-    if (scan.empty()) {
-        state.SkipWithError("shared KITTI data not present");
-        return;
-    }
+    const auto file = bench::DataDir() / "kitti00_first16/velodyne/000000.bin";
+    if (!bench::NeedData(state, file)) return;
+    const auto scan = testing::ReadKittiBin(file);
     const auto ref = testing::Subsample(scan, 2, 0);
     const Eigen::Isometry3d T_true = PoseFromXYZRPY(15.0, -4.0, 0.3, 0.017, -0.009, 0.61);
     const auto query = testing::Transform(T_true, testing::Subsample(scan, 2, 1));
@@ -92,4 +90,4 @@ BENCHMARK(BM_RefineAlignmentStreet)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecon
 }  // namespace
 }  // namespace revisit
 
-BENCHMARK_MAIN();
+REVISIT_BENCHMARK_MAIN()

@@ -1,6 +1,6 @@
 // Rendering and report benchmarks (issue 8 quality bar: a report with 100 closures in under 60 s on 2 cores).
 // Synthetic run: loop through a box world, local maps of ~20-40k points, 80 matches per closure.
-#include <benchmark/benchmark.h>
+#include "bench_main.hpp"
 
 #include "render/overview.hpp"
 #include "report/report_writer.hpp"
@@ -58,4 +58,4 @@ BENCHMARK(BM_Report)->Arg(100)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+REVISIT_BENCHMARK_MAIN()

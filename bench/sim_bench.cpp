@@ -1,6 +1,6 @@
 /// Simulator speed: rays per second of the ray caster (1 and 2 threads) and the time of a
 /// 64-beam sequence (100 scans of the demo route, written nowhere; x10 for 1,000 scans).
-#include <benchmark/benchmark.h>
+#include "bench_main.hpp"
 #include <tbb/global_control.h>
 
 #include "sim/presets.hpp"
@@ -60,4 +60,4 @@ BENCHMARK(BM_Sequence100ScansHdl64)->Unit(benchmark::kSecond)->UseRealTime()->It
 }  // namespace
 }  // namespace revisit
 
-BENCHMARK_MAIN();
+REVISIT_BENCHMARK_MAIN()

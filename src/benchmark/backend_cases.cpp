@@ -134,7 +134,7 @@ void GroundTruthCases(const CaseContext& c) {
     // revisit each other as in a real sequence; the overlaps themselves are not meaningful.
     std::vector<const Scan*> source;
     std::string label = "sim city-64 scans";
-    if (!c.data_dir.empty()) {
+    if (c.Need("kitti00_first16", "ground_truth on KITTI scans (ran on simulated scans instead)")) {
         for (const auto& s : c.fixtures->Dataset(c.data_dir / "kitti00_first16", 16)) source.push_back(&s);
         label = "KITTI 00 scans 0-15";
     }

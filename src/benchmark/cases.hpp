@@ -24,6 +24,12 @@ struct CaseContext {
         out->push_back(std::move(m));
     }
     void Skip(const std::string& reason) const { skipped->push_back(reason); }
+    /// True when the real-data folder is set and `relative` exists in it; otherwise notes `what` as skipped.
+    bool Need(const std::filesystem::path& relative, const std::string& what) const {
+        if (data_dir.empty()) return Skip(what + ": no data folder"), false;
+        if (std::filesystem::exists(data_dir / relative)) return true;
+        return Skip(what + ": " + (data_dir / relative).string() + " absent"), false;
+    }
 };
 
 void ReaderCases(const CaseContext& c);

@@ -156,6 +156,8 @@ Comparison CompareRecords(const BenchRecord& old_record, const BenchRecord& new_
         f.speedup = now.higher_is_better() ? f.ratio : (f.ratio != 0.0 ? 1.0 / f.ratio : 0.0);
         f.noise = std::max(before->spread, now.spread);
         f.same_setup = before->note == now.note;
+        f.slower = now.higher_is_better() ? now.max < before->min : now.min > before->max;
+        if (f.slower) c.slower.push_back(f.name);
         if (f.speedup > 0.0) log_sum += std::log(f.speedup);
         c.ratios.push_back(f);
     }
@@ -194,7 +196,8 @@ std::string FormatComparison(const Comparison& c) {
         const bool significant = std::abs(f.speedup - 1.0) > f.noise;
         out << Pad(f.name, 46) << Pad(Number(f.old_median), 11, true) << Pad(Number(f.new_median), 11, true)
             << Pad(Printf("%.3f", f.ratio), 9, true) << Pad(Printf("%.2fx", f.speedup), 9, true) << "  " << f.unit
-            << (significant ? "" : "  (within noise)") << (f.same_setup ? "" : "  (different setup)") << "\n";
+            << (significant ? "" : "  (within noise)") << (f.same_setup ? "" : "  (different setup)")
+            << (f.slower ? "  SLOWER" : "") << "\n";
     }
     if (!c.only_old.empty()) {
         out << c.only_old.size() << " figure(s) only in old:";
@@ -204,6 +207,46 @@ std::string FormatComparison(const Comparison& c) {
     for (const auto& n : c.only_new) out << "only in new: " << n << "\n";
     out << "geometric mean speedup " << Printf("%.3f", c.geometric_mean_speedup) << "x over " << c.ratios.size()
         << " figures\n";
+    if (!c.slower.empty()) {
+        out << c.slower.size() << " figure(s) SLOWER beyond the runs' spread (every new sample worse than every old one):";
+        for (const auto& n : c.slower) out << " " << n << ";";
+        out << "\n";
+    }
+    return out.str();
+}
+
+std::vector<StageRatio> StageRatios(const Comparison& c) {
+    std::vector<StageRatio> stages;
+    std::vector<double> log_sums;
+    for (const auto& f : c.ratios) {
+        const std::string stage = f.name.substr(0, f.name.find('/'));
+        std::size_t k = 0;
+        while (k < stages.size() && stages[k].stage != stage) ++k;
+        if (k == stages.size()) {
+            stages.push_back({stage, 0, 1.0, f.name, f.speedup, 0});
+            log_sums.push_back(0.0);
+        }
+        StageRatio& s = stages[k];
+        s.figures++;
+        if (f.speedup > 0.0) log_sums[k] += std::log(f.speedup);
+        if (f.speedup < s.worst_speedup) s.worst_figure = f.name, s.worst_speedup = f.speedup;
+        s.slower += f.slower ? 1 : 0;
+    }
+    for (std::size_t k = 0; k < stages.size(); ++k)
+        stages[k].geometric_mean_speedup = std::exp(log_sums[k] / double(stages[k].figures));
+    return stages;
+}
+
+std::string FormatStageRatios(const std::vector<StageRatio>& stages) {
+    std::ostringstream out;
+    out << Pad("stage", 14) << Pad("figures", 8, true) << Pad("speedup", 10, true) << Pad("slower", 8, true)
+        << "  worst figure\n";
+    for (const auto& s : stages) {
+        out << Pad(s.stage, 14) << Pad(std::to_string(s.figures), 8, true)
+            << Pad(Printf("%.2fx", s.geometric_mean_speedup), 10, true) << Pad(std::to_string(s.slower), 8, true)
+            << "  " << s.worst_figure << " " << Printf("%.2fx", s.worst_speedup) << "\n";
+    }
+    out << "speedup: reference time / this time per stage (geometric mean over its figures); > 1 is faster\n";
     return out.str();
 }
 

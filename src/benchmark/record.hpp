@@ -38,6 +38,7 @@ struct FigureRatio {
     double speedup = 0.0;    ///< > 1 when the new record is better (old/new for times, new/old for rates)
     double noise = 0.0;      ///< larger relative spread of the two [fraction]: ratios within 1 +- noise are noise
     bool same_setup = true;  ///< the notes (data, sizes, counts) agree; otherwise the ratio compares different work
+    bool slower = false;     ///< worse beyond the runs' spread: every new sample is worse than every old one
 };
 
 struct Comparison {
@@ -45,12 +46,27 @@ struct Comparison {
     std::vector<std::string> only_old;    ///< names missing from the new record
     std::vector<std::string> only_new;    ///< names missing from the old record
     double geometric_mean_speedup = 1.0;  ///< over `ratios`
+    std::vector<std::string> slower;      ///< figures with `slower` set, in order
 };
 
 Comparison CompareRecords(const BenchRecord& old_record, const BenchRecord& new_record);
 
+/// One stage (the figure names' group before '/': odometry, tree, end_to_end, ...) against a reference.
+struct StageRatio {
+    std::string stage;
+    int figures = 0;                      ///< figures of the stage measured in both records
+    double geometric_mean_speedup = 1.0;  ///< > 1: the new record is faster than the reference
+    std::string worst_figure;             ///< the figure with the lowest speedup
+    double worst_speedup = 1.0;
+    int slower = 0;                       ///< figures slower beyond the runs' spread
+};
+
+/// Per stage, in the order the stages first appear in `comparison`.
+std::vector<StageRatio> StageRatios(const Comparison& comparison);
+
 /// Human-readable tables (fixed-width, one figure per line).
 std::string FormatRecord(const BenchRecord& record);
 std::string FormatComparison(const Comparison& comparison);
+std::string FormatStageRatios(const std::vector<StageRatio>& stages);
 
 }  // namespace revisit

@@ -79,9 +79,9 @@ void ReaderCases(const CaseContext& c) {
         writer->Finish();
     }
     MeasureReader(c, "sim city-64 KITTI", folder, 0.0, "simulated HDL-64E-like KITTI folder (float32 x y z i)");
-    if (c.data_dir.empty()) return c.Skip("reader on real data: no data dir");
-    MeasureReader(c, "kitti00_first16", c.data_dir / "kitti00_first16", 0.0, "16 real HDL-64E scans, KITTI .bin");
-    if (std::filesystem::exists(c.data_dir / "radish/intel.rawlog"))
+    if (c.Need("kitti00_first16", "reader/kitti00_first16"))
+        MeasureReader(c, "kitti00_first16", c.data_dir / "kitti00_first16", 0.0, "16 real HDL-64E scans, KITTI .bin");
+    if (c.Need("radish/intel.rawlog", "reader/intel.rawlog"))
         MeasureReader(c, "intel.rawlog", c.data_dir / "radish/intel.rawlog", M_PI, "13,631 real 2D scans, MRPT rawlog");
 }
 
@@ -100,12 +100,13 @@ void OdometryCases(const CaseContext& c) {
                     "campus-handheld preset (Livox Avia-like) from scan " + std::to_string(skip));
     MeasureOdometry(c, "sim 2d", Cruising(c, "indoor-2d-360", skip, 4 * n), OdometryConfigFor("2d"),
                     "indoor-2d-360 preset (720 beams) from scan " + std::to_string(skip));
-    if (c.data_dir.empty()) return c.Skip("odometry on real data: no data dir");
-    MeasureOdometry(c, "kitti00 64-beam", c.fixtures->Dataset(c.data_dir / "kitti00_first16", 16),
-                    OdometryConfigFor("64-beam"), "KITTI 00 scans 0-15");
+    if (c.Need("kitti00_first16", "odometry/kitti00 64-beam"))
+        MeasureOdometry(c, "kitti00 64-beam", c.fixtures->Dataset(c.data_dir / "kitti00_first16", 16),
+                        OdometryConfigFor("64-beam"), "KITTI 00 scans 0-15");
     // From scan 2000 on: the log starts with the robot standing still.
-    MeasureOdometry(c, "intel 2d", c.fixtures->Dataset(c.data_dir / "radish/intel.rawlog", 4 * n, M_PI, 2000),
-                    OdometryConfigFor("2d"), "radish intel.rawlog from scan 2000, 180 beams");
+    if (c.Need("radish/intel.rawlog", "odometry/intel 2d"))
+        MeasureOdometry(c, "intel 2d", c.fixtures->Dataset(c.data_dir / "radish/intel.rawlog", 4 * n, M_PI, 2000),
+                        OdometryConfigFor("2d"), "radish intel.rawlog from scan 2000, 180 beams");
 }
 
 void LocalMapCases(const CaseContext& c) {

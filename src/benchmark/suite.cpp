@@ -7,10 +7,6 @@
 #include "benchmark/cases.hpp"
 #include "core/error.hpp"
 
-#ifndef REVISIT_DEFAULT_DATA_DIR
-#define REVISIT_DEFAULT_DATA_DIR "../shared/data"
-#endif
-
 namespace revisit {
 
 namespace {
@@ -81,8 +77,6 @@ SuiteScale ScaleOf(const std::string& suite) {
     }
     return s;
 }
-
-std::filesystem::path DefaultDataDir() { return REVISIT_DEFAULT_DATA_DIR; }
 
 std::vector<std::string> CaseGroupNames() {
     std::vector<std::string> names;

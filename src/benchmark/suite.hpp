@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "benchmark/data_dir.hpp"
 #include "benchmark/record.hpp"
 
 namespace revisit {
@@ -39,9 +40,6 @@ struct BenchOptions {
     std::vector<std::string> groups;                   ///< only these case groups (empty: all), see CaseGroupNames()
     std::function<void(const std::string&)> progress;  ///< told the name of each case before it runs
 };
-
-/// <source dir>/../shared/data as compiled in.
-std::filesystem::path DefaultDataDir();
 
 /// Case groups in run order: reader, odometry, local_map, closures, tree, refinement, pose_graph,
 /// ground_truth, report, end_to_end.

@@ -1,14 +1,19 @@
 #include "closures/local_map.hpp"
 
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace revisit {
 
 LocalMapper::LocalMapper(const LocalMapConfig& config) : config_(config) {}
 
+Eigen::Vector3i LocalMapper::KeyOf(const Eigen::Vector3f& point_in_map) const {
+    return (point_in_map / float(config_.voxel_size)).array().floor().cast<int>();
+}
+
 void LocalMapper::Insert(const Eigen::Vector3f& point_in_map) {
-    const Eigen::Vector3i key = (point_in_map / float(config_.voxel_size)).array().floor().cast<int>();
-    auto& voxel = voxels_[key];
+    auto& voxel = voxels_[KeyOf(point_in_map)];
     if (int(voxel.size()) < config_.max_points_per_voxel) voxel.push_back(point_in_map);
 }
 
@@ -66,7 +71,25 @@ std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const std::
 
     const Eigen::Isometry3d T_map_scan = current_.T_world_map.inverse() * T_world_sensor;
     const Eigen::Isometry3f T_map_scan_f = T_map_scan.cast<float>();
-    for (const auto& p : points_in_sensor) Insert(T_map_scan_f * p);
+    const std::size_t n = points_in_sensor.size();
+    if (n < 16384) {  // small scans: the plain loop, no tasks
+        for (const auto& p : points_in_sensor) Insert(T_map_scan_f * p);
+    } else {
+        // In parallel (issue 19): the transform, and whether the point's voxel is already full. A full
+        // voxel never changes again, so skipping its points is exact; the serial insertion, in input
+        // order as before, only sees the points that can still enter the map. The index is only read.
+        points_in_map_.resize(n);
+        full_.resize(n);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const auto& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                points_in_map_[i] = T_map_scan_f * points_in_sensor[i];
+                const auto it = voxels_.find(KeyOf(points_in_map_[i]));
+                full_[i] = it != voxels_.end() && int(it->second.size()) >= config_.max_points_per_voxel;
+            }
+        });
+        for (std::size_t i = 0; i < n; ++i)
+            if (!full_[i]) Insert(points_in_map_[i]);
+    }
     current_.last_scan = scan_index;
     current_.travel_end = travel_;
     current_.T_map_scan.push_back(T_map_scan);

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -51,6 +52,7 @@ class LocalMapper {
             return (std::size_t(v.x()) * 73856093u) ^ (std::size_t(v.y()) * 19349669u) ^ (std::size_t(v.z()) * 83492791u);
         }
     };
+    Eigen::Vector3i KeyOf(const Eigen::Vector3f& point_in_map) const;
     void Insert(const Eigen::Vector3f& point_in_map);
     LocalMap CloseCurrent();
     void StartMap(std::size_t scan_index, const Eigen::Isometry3d& T_world_sensor);
@@ -62,6 +64,8 @@ class LocalMapper {
     int next_id_ = 0;
     double travel_ = 0.0;
     std::optional<Eigen::Vector3d> last_position_;
+    std::vector<Eigen::Vector3f> points_in_map_;  ///< AddScan's buffers, kept between scans
+    std::vector<std::uint8_t> full_;              ///< the point's voxel is already full
 };
 
 /// Batch helper: local maps of a whole sequence given per-scan points and poses.

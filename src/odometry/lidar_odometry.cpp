@@ -2,7 +2,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <functional>
 #include <sstream>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.hpp"
 #include "odometry/preprocess.hpp"
@@ -87,8 +91,16 @@ std::string LidarOdometry::DegeneracyReason(const std::vector<Eigen::Vector3d>& 
 
 std::size_t LidarOdometry::CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor,
                                          double radius, std::size_t stride) const {
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < source.size(); i += stride) count += map_.FindNearest(T_world_sensor * source[i], radius) != nullptr;
+    // An integer sum: the same at any thread count.
+    const std::size_t samples = (source.size() + stride - 1) / stride;
+    const std::size_t count = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, samples, 512), std::size_t{0},
+        [&](const tbb::blocked_range<std::size_t>& range, std::size_t sum) {
+            for (std::size_t k = range.begin(); k != range.end(); ++k)
+                sum += map_.FindNearest(T_world_sensor * source[k * stride], radius) != nullptr;
+            return sum;
+        },
+        std::plus<>());
     return count * stride;
 }
 
@@ -108,8 +120,9 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
     if (config_.planar) T_predicted = ProjectToPlanar(T_predicted);
 
     // Preprocessing, METHOD.md section 1: crop, deskew, downsample at 0.5 v and 1.5 v.
-    std::vector<std::size_t> kept;
-    deskewed_ = CropRange(scan.points, config_.min_range, config_.max_range, config_.deskew ? &kept : nullptr);
+    // Parallel and into buffers kept between frames; the same points as CropRange / VoxelDownsample.
+    std::vector<std::size_t>& kept = kept_;
+    filter_.Crop(scan.points, config_.min_range, config_.max_range, deskewed_, config_.deskew ? &kept : nullptr);
     stats_.cropped_points = deskewed_.size();
     if (config_.deskew && !poses_.empty()) {
         const std::vector<double> all_times = SweepTimes(scan, config_.azimuth_clockwise);
@@ -118,8 +131,9 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         deskewed_ = Deskew(deskewed_, times, delta);
     }
     const double voxel = config_.VoxelSize();
-    downsampled_ = VoxelDownsample(deskewed_, 0.5 * voxel);
-    const std::vector<Eigen::Vector3d> source = VoxelDownsample(downsampled_, 1.5 * voxel);
+    filter_.Downsample(deskewed_, 0.5 * voxel, downsampled_);
+    filter_.Downsample(downsampled_, 1.5 * voxel, source_);
+    const std::vector<Eigen::Vector3d>& source = source_;
     stats_.map_points = downsampled_.size();
     stats_.source_points = source.size();
 
@@ -191,9 +205,11 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         const double correction = (T_predicted.inverse() * T_new).translation().norm();
         sum_squared_corrections_ += correction * correction;
         ++num_corrections_;
-        std::vector<Eigen::Vector3d> points_in_world(downsampled_.size());
-        for (std::size_t i = 0; i < downsampled_.size(); ++i) points_in_world[i] = T_new * downsampled_[i];
-        map_.AddPoints(points_in_world);
+        points_in_world_.resize(downsampled_.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, downsampled_.size(), 8192), [&](const auto& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) points_in_world_[i] = T_new * downsampled_[i];
+        });
+        map_.AddPoints(points_in_world_);
         map_.RemoveFarFrom(T_new.translation(), config_.max_range);
     }
     last_delta_ = Orthonormalized(last_pose.inverse() * T_new);

@@ -11,6 +11,7 @@
 #include "core/trajectory.hpp"
 #include "odometry/adaptive_threshold.hpp"
 #include "odometry/odometry_config.hpp"
+#include "odometry/parallel_filter.hpp"
 #include "odometry/voxel_hash_map.hpp"
 
 namespace revisit {
@@ -74,6 +75,11 @@ class LidarOdometry {
     std::optional<Eigen::Isometry3d> last_T_odom_sensor_;
     std::vector<Eigen::Vector3d> deskewed_;
     std::vector<Eigen::Vector3d> downsampled_;
+    // Per-frame buffers kept between frames (issue 19: no allocation per scan).
+    ParallelFilter filter_;
+    std::vector<std::size_t> kept_;                 ///< input index of each cropped point (deskew)
+    std::vector<Eigen::Vector3d> source_;           ///< registration points (1.5 v)
+    std::vector<Eigen::Vector3d> points_in_world_;  ///< map points of the frame, world frame
     OdometryFrameStats stats_;
     std::size_t num_degenerate_ = 0;
     double sum_squared_corrections_ = 0.0;  ///< [m^2] translation corrections of registered frames

@@ -41,7 +41,8 @@ struct Moments {
 };
 
 Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMap& map, const Eigen::Isometry3d& T,
-                   const Eigen::Vector3d& centre, const IcpParams& params) {
+                   const Eigen::Vector3d& centre, const IcpParams& params,
+                   std::vector<VoxelHashMap::Neighbourhood>& neighbourhoods) {
     const double k2 = params.kernel * params.kernel;
     // Deterministic reduce: the split tree depends only on the range and grain, never on the
     // thread count, so the floating-point sums are identical with 1 or N threads.
@@ -50,7 +51,7 @@ Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMa
         [&](const tbb::blocked_range<std::size_t>& range, Moments sums) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const Eigen::Vector3d p_world = T * points[i];
-                const Eigen::Vector3d* nearest = map.FindNearest(p_world, params.max_correspondence_distance);
+                const Eigen::Vector3d* nearest = map.FindNearest(p_world, params.max_correspondence_distance, neighbourhoods[i]);
                 if (nearest == nullptr) continue;
                 const Eigen::Vector3d r = p_world - *nearest;
                 const Eigen::Vector3d p = p_world - centre;  // linearize about the sensor: better conditioned
@@ -116,9 +117,13 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
     Matrix6d JTJ;
     Vector6d JTr;
     result.valid = true;
+    // Per source point, its map neighbourhood between iterations (the map is fixed during ICP); a
+    // buffer of the calling thread, reused from scan to scan.
+    static thread_local std::vector<VoxelHashMap::Neighbourhood> neighbourhoods;
+    neighbourhoods.assign(points_in_sensor.size(), VoxelHashMap::Neighbourhood{});
     for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
         const Eigen::Isometry3d T = Translation(centre) * T_centred;
-        const Moments moments = Accumulate(points_in_sensor, map, T, centre, params);
+        const Moments moments = Accumulate(points_in_sensor, map, T, centre, params, neighbourhoods);
         result.correspondences = moments.count;
         result.iterations = iteration + 1;
         if (moments.count < static_cast<std::size_t>(std::max(params.min_correspondences, 1))) {

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "odometry/parallel_filter.hpp"
 
 namespace revisit {
 namespace {
@@ -33,35 +37,78 @@ VoxelHashMap::VoxelHashMap(double voxel_size, int max_points_per_voxel)
       max_points_(std::max(1, max_points_per_voxel)),
       min_spacing2_(voxel_size * voxel_size / std::max(1, max_points_per_voxel)) {}
 
+bool VoxelHashMap::TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point) {
+    const int count = counts_[slot];
+    if (count >= max_points_) return false;
+    const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
+    const bool too_close = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& p) {
+        return (p - point).squaredNorm() < min_spacing2_;
+    });
+    if (too_close) return false;
+    points_[slot * max_points_ + count] = point;
+    ++counts_[slot];
+    return true;
+}
+
 void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
-    for (const auto& point : points) {
-        const Voxel voxel = VoxelOfInverse(point, inv_voxel_size_);
-        const auto [it, inserted] = index_.try_emplace(voxel, static_cast<std::uint32_t>(voxels_.size()));
-        if (inserted) {
-            voxels_.push_back(voxel);
-            counts_.push_back(1);
-            points_.resize(points_.size() + max_points_);
-            points_[static_cast<std::size_t>(it->second) * max_points_] = point;
-            continue;
-        }
-        const std::size_t slot = it->second;
-        const int count = counts_[slot];
-        if (count >= max_points_) continue;
-        const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
-        const bool too_close = std::any_of(begin, begin + count, [&](const Eigen::Vector3d& p) {
-            return (p - point).squaredNorm() < min_spacing2_;
-        });
-        if (too_close) continue;
-        points_[slot * max_points_ + count] = point;
-        ++counts_[slot];
+    // Same result as adding the points one by one in order, at any thread count (issue 19):
+    // 1. in parallel, each thread owns the voxels of its hash shard and adds, in input order, the
+    //    points that fall in voxels already in the map (the index is only read);
+    // 2. serially, in input order, the points of new voxels: new slots are numbered as before.
+    const std::size_t n = points.size();
+    const std::size_t num_shards = NumShards(n);
+    if (num_shards == 1) {  // small batches (2D scans, sparse sensors): the plain loop, no tasks
+        for (const auto& point : points) AddPoint(point);
+        return;
     }
+    pending_.resize(n);
+    point_voxels_.resize(n);
+    point_shards_.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            point_voxels_[i] = VoxelOfInverse(points[i], inv_voxel_size_);
+            point_shards_[i] = static_cast<std::uint32_t>(ShardOf(point_voxels_[i], num_shards));
+        }
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_shards, 1), [&](const auto& range) {
+        for (std::size_t s = range.begin(); s != range.end(); ++s) {
+            for (std::size_t i = 0; i < n; ++i) {
+                if (point_shards_[i] != s) continue;
+                const auto it = index_.find(point_voxels_[i]);
+                pending_[i] = it == index_.end();
+                if (!pending_[i]) TryAddToSlot(it->second, points[i]);
+            }
+        }
+    });
+    for (std::size_t i = 0; i < n; ++i)
+        if (pending_[i]) AddPoint(points[i], point_voxels_[i]);
+}
+
+void VoxelHashMap::AddPoint(const Eigen::Vector3d& point) { AddPoint(point, VoxelOfInverse(point, inv_voxel_size_)); }
+
+void VoxelHashMap::AddPoint(const Eigen::Vector3d& point, const Voxel& voxel) {
+    const auto [it, inserted] = index_.try_emplace(voxel, static_cast<std::uint32_t>(voxels_.size()));
+    if (!inserted) {
+        TryAddToSlot(it->second, point);
+        return;
+    }
+    voxels_.push_back(voxel);
+    counts_.push_back(1);
+    points_.resize(points_.size() + max_points_);
+    points_[static_cast<std::size_t>(it->second) * max_points_] = point;
 }
 
 void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance) {
     const double max_distance2 = max_distance * max_distance;
+    // The distance test in parallel; the swap-removal below is the serial one, so slots end up the same.
+    far_.resize(voxels_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels_.size(), 8192), [&](const auto& range) {
+        for (std::size_t slot = range.begin(); slot != range.end(); ++slot)
+            far_[slot] = (points_[slot * max_points_] - origin).squaredNorm() > max_distance2;
+    });
     std::size_t slot = 0;
     while (slot < voxels_.size()) {
-        if ((points_[slot * max_points_] - origin).squaredNorm() <= max_distance2) {
+        if (!far_[slot]) {
             ++slot;
             continue;
         }
@@ -71,11 +118,13 @@ void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_dista
         if (slot != last) {
             voxels_[slot] = voxels_[last];
             counts_[slot] = counts_[last];
+            far_[slot] = far_[last];
             std::copy_n(points_.begin() + last * max_points_, counts_[last], points_.begin() + slot * max_points_);
             index_[voxels_[slot]] = static_cast<std::uint32_t>(slot);
         }
         voxels_.pop_back();
         counts_.pop_back();
+        far_.pop_back();
         points_.resize(points_.size() - max_points_);
     }
 }
@@ -87,7 +136,8 @@ void VoxelHashMap::Clear() {
     points_.clear();
 }
 
-const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
+template <typename SlotOf>
+const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const {
     const Eigen::Vector3d scaled = query * inv_voxel_size_;
     const Eigen::Vector3d floor = scaled.array().floor();
     const Voxel centre = floor.cast<int>();
@@ -99,15 +149,15 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
 
     double best2 = max_distance * max_distance;
     const Eigen::Vector3d* best = nullptr;
-    for (const Voxel& offset : kOffsets) {
+    for (std::size_t k = 0; k < kOffsets.size(); ++k) {
+        const Voxel& offset = kOffsets[k];
         double box2 = 0.0;
         for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
         if (box2 >= best2) continue;
-        const auto it = index_.find(Voxel(centre + offset));
-        if (it == index_.end()) continue;
-        const std::size_t slot = it->second;
-        const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
-        const Eigen::Vector3d* end = begin + counts_[slot];
+        const std::int64_t slot = slot_of(centre, k);
+        if (slot < 0) continue;
+        const Eigen::Vector3d* begin = points_.data() + std::size_t(slot) * max_points_;
+        const Eigen::Vector3d* end = begin + counts_[std::size_t(slot)];
         for (const Eigen::Vector3d* p = begin; p != end; ++p) {
             const double d2 = (*p - query).squaredNorm();
             if (d2 < best2) {
@@ -117,6 +167,29 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
         }
     }
     return best;
+}
+
+const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
+    return Search(query, max_distance, [this](const Voxel& centre, std::size_t k) -> std::int64_t {
+        const auto it = index_.find(Voxel(centre + kOffsets[k]));
+        return it == index_.end() ? -1 : std::int64_t(it->second);
+    });
+}
+
+const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance,
+                                                 Neighbourhood& cache) const {
+    return Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
+        if (centre != cache.centre) {  // the query moved to another voxel: forget the old neighbours
+            cache.centre = centre;
+            cache.slots.fill(Neighbourhood::kUnknown);
+        }
+        // Looked up when first needed (pruned voxels never are), at most once per centre.
+        if (cache.slots[k] == Neighbourhood::kUnknown) {
+            const auto it = index_.find(Voxel(centre + kOffsets[k]));
+            cache.slots[k] = it == index_.end() ? -1 : std::int32_t(it->second);
+        }
+        return cache.slots[k];
+    });
 }
 
 std::size_t VoxelHashMap::NumPoints() const {

@@ -2,6 +2,8 @@
 /// The odometry's local map: a voxel hash map with a bounded number of points per voxel
 /// (METHOD.md section 1). Points of a voxel are stored contiguously for cache-friendly search.
 #include <Eigen/Core>
+#include <array>
+#include <limits>
 #include <cstdint>
 #include <functional>
 #include <tsl/robin_map.h>
@@ -24,7 +26,8 @@ class VoxelHashMap {
     /// reserves max_points_per_voxel points (24 bytes each), so keep that number small.
     VoxelHashMap(double voxel_size, int max_points_per_voxel);
 
-    /// Adds world-frame points; order matters (the first points of a voxel are kept).
+    /// Adds world-frame points; order matters (the first points of a voxel are kept). Parallel, with
+    /// the result of adding them one by one in order.
     void AddPoints(const std::vector<Eigen::Vector3d>& points);
     /// Drops voxels whose first point is farther than `max_distance` [m] from `origin`.
     void RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance);
@@ -36,6 +39,17 @@ class VoxelHashMap {
     /// map changes.
     const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance) const;
 
+    /// The slots of the 27 voxels around one query voxel, kept between ICP iterations (issue 19): while
+    /// a point stays in the same voxel, its neighbours are not looked up again. Valid while the map
+    /// does not change; reset it (a default one) before each registration.
+    struct Neighbourhood {
+        static constexpr std::int32_t kUnknown = -2;  ///< not looked up yet
+        Voxel centre = Voxel::Constant(std::numeric_limits<int>::min());
+        std::array<std::int32_t, 27> slots{};  ///< per neighbour offset, -1: no such voxel
+    };
+    /// FindNearest with `cache` for this query's neighbourhood: the same result, fewer hash lookups.
+    const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance, Neighbourhood& cache) const;
+
     bool Empty() const { return voxels_.empty(); }
     std::size_t NumVoxels() const { return voxels_.size(); }
     std::size_t NumPoints() const;
@@ -43,6 +57,15 @@ class VoxelHashMap {
     double voxel_size() const { return voxel_size_; }
 
   private:
+    /// FindNearest over the neighbour voxels `slot_of(centre, k)` gives (-1: none), k in visiting order.
+    template <typename SlotOf>
+    const Eigen::Vector3d* Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const;
+    /// One point, as the serial definition adds it (a new voxel gets the next slot).
+    void AddPoint(const Eigen::Vector3d& point);
+    void AddPoint(const Eigen::Vector3d& point, const Voxel& voxel);
+    /// Adds `point` to the voxel in `slot` unless it is full or the point is too close to one of its points.
+    bool TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point);
+
     double voxel_size_;
     double inv_voxel_size_;
     int max_points_;
@@ -51,6 +74,11 @@ class VoxelHashMap {
     std::vector<Voxel> voxels_;                              ///< slot -> voxel
     std::vector<std::uint16_t> counts_;                      ///< slot -> number of points
     std::vector<Eigen::Vector3d> points_;                    ///< slot * max_points_ + k
+    // Buffers of AddPoints and RemoveFarFrom, kept between frames (no allocation per frame).
+    std::vector<Voxel> point_voxels_;
+    std::vector<std::uint32_t> point_shards_;
+    std::vector<std::uint8_t> pending_;  ///< the point's voxel was not in the map
+    std::vector<std::uint8_t> far_;      ///< per slot
 };
 
 }  // namespace revisit

@@ -8,6 +8,7 @@
 
 #include "evaluation/ground_truth_closures.hpp"
 #include "evaluation/scan_context.hpp"
+#include "io/prefetch_reader.hpp"
 #include "io/reader.hpp"
 #include "pipeline/progress.hpp"
 
@@ -31,7 +32,7 @@ DatasetPass ReadDatasetPass(const RunState& state, const RunOptions& options, co
     if (cached && !need_scan_context) return pass;
     ReaderOptions reader_options = MakeReaderOptions(config.input);
     reader_options.allow_truncated = options.allow_truncated;  // the same scans the run read
-    auto reader = OpenDataset(options.dataset, reader_options);
+    const std::unique_ptr<Reader> reader = std::make_unique<PrefetchReader>(OpenDataset(options.dataset, reader_options), 2);
     GroundTruthBuilder builder(state.reference, config.ground_truth);
     Progress progress(log, Progress::DetectMode(options.quiet), state.reference.size(), "scans (evaluation)");
     std::size_t position = 0;

@@ -11,6 +11,7 @@
 #include "closures/database_io.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "io/prefetch_reader.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
 #include "odometry/lidar_odometry.hpp"
@@ -141,7 +142,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     ReaderOptions reader_options = MakeReaderOptions(config.input);
     reader_options.allow_truncated = options.allow_truncated;
     // Open every input before creating the run folder: bad input fails without leaving anything behind.
-    auto reader = OpenDataset(options.dataset, reader_options);
+    // Read ahead on a thread of its own (two scans, same order): reading overlaps the processing.
+    const std::unique_ptr<Reader> reader = std::make_unique<PrefetchReader>(OpenDataset(options.dataset, reader_options), 2);
     const Trajectory pose_file = options.poses == PoseSource::kFile ? ReadPoses(options.poses_file) : Trajectory{};
     const ReferenceSource ground_truth(options.gt_file);
     ground_truth.CheckCount(reader->Info().num_scans);

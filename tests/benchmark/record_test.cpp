@@ -121,6 +121,47 @@ TEST(Compare, SmallChangesWithinTheSpreadAreMarkedAsNoise) {
     EXPECT_NE(clear.find("0.50x"), std::string::npos);
 }
 
+TEST(Compare, SlowerOnlyWhenEveryNewSampleIsWorseThanEveryOldOne) {
+    // Old 18..22 ms, new 21..23 ms: the ranges overlap, a slowdown within the runs' spread.
+    BenchRecord old_record = Record(20.0, 500.0, 0.1), overlap = Record(22.0, 500.0, 0.05);
+    EXPECT_FALSE(CompareRecords(old_record, overlap).ratios[0].slower);
+    // New 23.75..26.25 ms: above the old maximum of 22 ms.
+    const auto c = CompareRecords(old_record, Record(25.0, 500.0, 0.05));
+    EXPECT_TRUE(c.ratios[0].slower);
+    EXPECT_FALSE(c.ratios[1].slower);
+    EXPECT_EQ(c.slower, std::vector<std::string>{"odometry/a"});
+    EXPECT_NE(FormatComparison(c).find("SLOWER"), std::string::npos);
+    // Rates: slower when the new maximum is below the old minimum; faster never flags.
+    EXPECT_TRUE(CompareRecords(Record(20.0, 500.0), Record(20.0, 400.0)).ratios[1].slower);
+    EXPECT_TRUE(CompareRecords(Record(20.0, 500.0), Record(10.0, 1000.0)).slower.empty());
+}
+
+TEST(StageRatios, GeometricMeanPerStageWithTheWorstFigure) {
+    // Reference: odometry figures 10 and 40 ms, tree 2 ms, reader 500 scans/s. New: odometry 5 ms (2x
+    // faster) and 80 ms (2x slower), tree 1 ms (2x faster), reader 1500 scans/s (3x faster).
+    BenchRecord reference = Record(10.0, 500.0), now = Record(5.0, 1500.0);
+    reference.results.push_back(Figure("odometry/c", FigureKind::kMsPerItem, {40.0}));
+    reference.results.push_back(Figure("tree/q", FigureKind::kMsPerItem, {2.0}));
+    now.results.push_back(Figure("odometry/c", FigureKind::kMsPerItem, {80.0}));
+    now.results.push_back(Figure("tree/q", FigureKind::kMsPerItem, {1.0}));
+    const auto stages = StageRatios(CompareRecords(reference, now));
+    ASSERT_EQ(stages.size(), 3u);
+    EXPECT_EQ(stages[0].stage, "odometry");
+    EXPECT_EQ(stages[0].figures, 2);
+    EXPECT_NEAR(stages[0].geometric_mean_speedup, 1.0, 1e-12);  // sqrt(2 * 0.5)
+    EXPECT_EQ(stages[0].worst_figure, "odometry/c");
+    EXPECT_NEAR(stages[0].worst_speedup, 0.5, 1e-12);
+    EXPECT_EQ(stages[0].slower, 1);
+    EXPECT_EQ(stages[1].stage, "reader");
+    EXPECT_NEAR(stages[1].geometric_mean_speedup, 3.0, 1e-12);
+    EXPECT_EQ(stages[2].stage, "tree");
+    EXPECT_NEAR(stages[2].geometric_mean_speedup, 2.0, 1e-12);
+    EXPECT_EQ(stages[2].slower, 0);
+    const std::string table = FormatStageRatios(stages);
+    EXPECT_NE(table.find("odometry"), std::string::npos);
+    EXPECT_NE(table.find("3.00x"), std::string::npos);
+}
+
 TEST(Format, TableListsEveryFigureMachineAndSkips) {
     const std::string table = FormatRecord(Record(20.0, 500.0));
     for (const char* needle :

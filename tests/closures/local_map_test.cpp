@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <random>
+#include <tbb/global_control.h>
+#include <tuple>
 
 #include "closures/density_image.hpp"
 #include "closures/features.hpp"
@@ -157,6 +161,52 @@ TEST(Features, RobustScalingAndAdaptiveBudgetRaiseKeypointsOnSparseMaps) {
     const auto robust = ComputeFeatures(ComputeDensityImage(sparse, density).image, features);
     EXPECT_GT(robust.keypoints.size(), 2 * paper.keypoints.size() + 20);
     EXPECT_EQ(robust.keypoints.size(), robust.descriptors.size());
+}
+
+}  // namespace
+}  // namespace revisit
+
+namespace revisit {
+namespace {
+
+/// Scans of 60,000 points around the origin (most voxels fill within a few scans).
+std::vector<std::vector<Eigen::Vector3f>> DenseScans(int count) {
+    std::mt19937 rng(11);
+    std::normal_distribution<float> spread(0.0f, 6.0f);
+    std::vector<std::vector<Eigen::Vector3f>> scans(count);
+    for (auto& scan : scans)
+        for (int i = 0; i < 60000; ++i) scan.emplace_back(spread(rng), spread(rng), 0.3f * spread(rng));
+    return scans;
+}
+
+TEST(LocalMapper, KeepsTheFirstPointsOfEveryVoxelInInputOrderAtAnyThreadCount) {
+    const auto scans = DenseScans(4);
+    std::vector<Eigen::Isometry3d> poses;
+    for (int i = 0; i < 4; ++i) poses.push_back(PoseFromXYZRPY(0.5 * i, 0.1 * i, 0, 0, 0, 0.05 * i));
+    std::vector<std::vector<Eigen::Vector3f>> results;
+    for (const int threads : {1, 2, 4}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        results.push_back(BuildLocalMaps(scans, poses).at(0).points);
+    }
+    EXPECT_EQ(results[0], results[1]);
+    EXPECT_EQ(results[0], results[2]);
+    // The definition: per voxel, the first 20 points met, in order.
+    std::map<std::tuple<int, int, int>, std::vector<Eigen::Vector3f>> expected;
+    for (int s = 0; s < 4; ++s) {
+        const Eigen::Isometry3f T = (poses[0].inverse() * poses[std::size_t(s)]).cast<float>();
+        for (const auto& p : scans[std::size_t(s)]) {
+            const Eigen::Vector3f q = T * p;
+            const Eigen::Vector3i k = (q / 1.0f).array().floor().cast<int>();
+            auto& voxel = expected[{k.x(), k.y(), k.z()}];
+            if (voxel.size() < 20) voxel.push_back(q);
+        }
+    }
+    std::map<std::tuple<int, int, int>, std::vector<Eigen::Vector3f>> got;
+    for (const auto& q : results[0]) {
+        const Eigen::Vector3i k = (q / 1.0f).array().floor().cast<int>();
+        got[{k.x(), k.y(), k.z()}].push_back(q);
+    }
+    EXPECT_EQ(got, expected);
 }
 
 }  // namespace

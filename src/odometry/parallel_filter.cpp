@@ -1,0 +1,99 @@
+#include "odometry/parallel_filter.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/error.hpp"
+#include "odometry/preprocess.hpp"
+
+namespace revisit {
+namespace {
+constexpr std::size_t kChunk = 8192;  ///< points per task of the element-wise passes
+}  // namespace
+
+std::size_t NumShards(std::size_t n) {
+    if (n < 2 * kChunk) return 1;
+    return static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+}
+
+template <typename Write>
+std::size_t ParallelFilter::Compact(std::size_t n, const Write& write) {
+    // Count per fixed chunk, prefix sum, then write: positions depend on the flags only.
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    chunk_offsets_.assign(chunks + 1, 0);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+        std::size_t count = 0;
+        for (std::size_t i = c * kChunk, end = std::min(n, i + kChunk); i < end; ++i) count += keep_[i];
+        chunk_offsets_[c + 1] = count;
+    });
+    for (std::size_t c = 0; c < chunks; ++c) chunk_offsets_[c + 1] += chunk_offsets_[c];
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+        std::size_t position = chunk_offsets_[c];
+        for (std::size_t i = c * kChunk, end = std::min(n, i + kChunk); i < end; ++i)
+            if (keep_[i]) write(i, position++);
+    });
+    return chunk_offsets_[chunks];
+}
+
+void ParallelFilter::Crop(const std::vector<Eigen::Vector3f>& points, double min_range, double max_range,
+                          std::vector<Eigen::Vector3d>& out, std::vector<std::size_t>* kept) {
+    const double min2 = min_range * min_range, max2 = max_range * max_range;
+    const std::size_t n = points.size();
+    if (NumShards(n) == 1) {  // small scans: the serial definition, no tasks
+        out = CropRange(points, min_range, max_range, kept);
+        return;
+    }
+    keep_.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const Eigen::Vector3d p = points[i].cast<double>();
+            const double range2 = p.squaredNorm();
+            keep_[i] = !(range2 < min2 || range2 > max2 || !p.allFinite());
+        }
+    });
+    out.resize(n);  // capacity kept between frames; shrunk to the count below
+    if (kept) kept->resize(n);
+    const std::size_t count = Compact(n, [&](std::size_t i, std::size_t position) {
+        out[position] = points[i].cast<double>();
+        if (kept) (*kept)[position] = i;
+    });
+    out.resize(count);
+    if (kept) kept->resize(count);
+}
+
+void ParallelFilter::Downsample(const std::vector<Eigen::Vector3d>& points, double voxel_size,
+                                std::vector<Eigen::Vector3d>& out) {
+    if (!(voxel_size > 0.0)) throw ConfigError("voxel_size must be positive");
+    const double inv_voxel_size = 1.0 / voxel_size;
+    const std::size_t n = points.size();
+    const std::size_t num_shards = NumShards(n);
+    if (num_shards == 1) {
+        out = VoxelDownsample(points, voxel_size);
+        return;
+    }
+    keep_.resize(n);
+    voxels_.resize(n);
+    shards_.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            voxels_[i] = (points[i] * inv_voxel_size).array().floor().cast<int>();
+            shards_[i] = static_cast<std::uint32_t>(ShardOf(voxels_[i], num_shards));
+        }
+    });
+    if (seen_.size() < num_shards) seen_.resize(num_shards);
+    // One task per shard: it walks every point in order and decides the first point of its voxels.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_shards, 1), [&](const auto& range) {
+        for (std::size_t s = range.begin(); s != range.end(); ++s) {
+            auto& seen = seen_[s];
+            seen.clear();  // keeps its buckets
+            seen.reserve(n / (2 * num_shards));
+            for (std::size_t i = 0; i < n; ++i)
+                if (shards_[i] == s) keep_[i] = seen.insert(voxels_[i]).second;
+        }
+    });
+    out.resize(n);
+    out.resize(Compact(n, [&](std::size_t i, std::size_t position) { out[position] = points[i]; }));
+}
+
+}  // namespace revisit

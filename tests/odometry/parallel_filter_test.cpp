@@ -1,0 +1,113 @@
+// The odometry's parallel steps (issue 19) give exactly the serial results at any thread count:
+// range crop, voxel downsampling and the map update.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <limits>
+#include <random>
+
+#include "odometry/parallel_filter.hpp"
+#include "odometry/preprocess.hpp"
+#include "odometry/voxel_hash_map.hpp"
+
+namespace revisit {
+namespace {
+
+/// A scan-like cloud: 120,000 points out to 110 m, denser near the sensor, with a few non-finite ones.
+std::vector<Eigen::Vector3f> ScanLike(unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> angle(-3.14159f, 3.14159f), height(-2.0f, 4.0f), unit(0.0f, 1.0f);
+    std::vector<Eigen::Vector3f> points;
+    for (int i = 0; i < 120000; ++i) {
+        const float range = 110.0f * unit(rng) * unit(rng), a = angle(rng);
+        points.emplace_back(range * std::cos(a), range * std::sin(a), height(rng));
+    }
+    points[17].x() = std::numeric_limits<float>::quiet_NaN();
+    points[99].y() = std::numeric_limits<float>::infinity();
+    return points;
+}
+
+template <typename F>
+auto WithThreads(int threads, F&& f) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    return f();
+}
+
+TEST(ParallelFilter, CropAndDownsampleEqualTheSerialDefinitionsAtAnyThreadCount) {
+    const auto scan = ScanLike(3);
+    std::vector<std::size_t> serial_kept;
+    const auto serial_cropped = CropRange(scan, 5.0, 100.0, &serial_kept);
+    const auto serial_fine = VoxelDownsample(serial_cropped, 0.5);
+    const auto serial_coarse = VoxelDownsample(serial_fine, 1.5);
+    ASSERT_GT(serial_fine.size(), 20000u);  // enough points for several shards
+    for (const int threads : {1, 2, 4}) {
+        WithThreads(threads, [&] {
+            ParallelFilter filter;
+            std::vector<Eigen::Vector3d> cropped, fine, coarse;
+            std::vector<std::size_t> kept;
+            for (int frame = 0; frame < 2; ++frame) {  // the second frame reuses the buffers
+                filter.Crop(scan, 5.0, 100.0, cropped, &kept);
+                filter.Downsample(cropped, 0.5, fine);
+                filter.Downsample(fine, 1.5, coarse);
+                EXPECT_EQ(cropped, serial_cropped) << threads << " threads";
+                EXPECT_EQ(kept, serial_kept) << threads << " threads";
+                EXPECT_EQ(fine, serial_fine) << threads << " threads";
+                EXPECT_EQ(coarse, serial_coarse) << threads << " threads";
+            }
+            return 0;
+        });
+    }
+}
+
+TEST(VoxelHashMap, AddingABatchEqualsAddingPointByPointAtAnyThreadCount) {
+    const auto scan = ScanLike(5);
+    std::vector<Eigen::Vector3d> first, second;
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+        if (!scan[i].allFinite()) continue;
+        (i % 2 ? first : second).push_back(scan[i].cast<double>());
+    }
+    // One by one: every batch of one point takes the serial path.
+    VoxelHashMap reference(1.0, 20);
+    for (const auto* batch : {&first, &second}) {
+        for (const auto& p : *batch) reference.AddPoints({p});
+        reference.RemoveFarFrom(batch->front(), 60.0);
+    }
+    for (const int threads : {1, 2, 4}) {
+        WithThreads(threads, [&] {
+            VoxelHashMap map(1.0, 20);
+            for (const auto* batch : {&first, &second}) {
+                map.AddPoints(*batch);  // the second batch falls mostly into voxels of the first
+                map.RemoveFarFrom(batch->front(), 60.0);
+            }
+            EXPECT_EQ(map.NumVoxels(), reference.NumVoxels()) << threads << " threads";
+            EXPECT_EQ(map.Points(), reference.Points()) << threads << " threads";  // same slots, same order
+            return 0;
+        });
+    }
+}
+
+TEST(VoxelHashMap, NeighbourhoodCacheGivesTheSameNearestPointAsTheLookup) {
+    const auto scan = ScanLike(9);
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& p : scan)
+        if (p.allFinite()) points.push_back(p.cast<double>());
+    VoxelHashMap map(1.0, 20);
+    map.AddPoints(points);
+    // Queries drifting by a few cm per "iteration", as source points do during ICP: most stay in
+    // their voxel (the cache answers), some cross into the next one (the cache refills).
+    std::vector<Eigen::Vector3d> queries(points.begin(), points.begin() + 3000);
+    std::vector<VoxelHashMap::Neighbourhood> caches(queries.size());
+    std::size_t found = 0;
+    for (int iteration = 0; iteration < 6; ++iteration) {
+        for (std::size_t i = 0; i < queries.size(); ++i) {
+            queries[i] += Eigen::Vector3d(0.07, -0.05, 0.02);
+            const Eigen::Vector3d* expected = map.FindNearest(queries[i], 2.0);
+            ASSERT_EQ(map.FindNearest(queries[i], 2.0, caches[i]), expected) << "query " << i;
+            found += expected != nullptr;
+        }
+    }
+    EXPECT_GT(found, 6 * 2900u);
+}
+
+}  // namespace
+}  // namespace revisit
