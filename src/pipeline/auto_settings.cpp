@@ -92,7 +92,8 @@ constexpr double kLevelTiltDeg = 5.0;
 /// What the closure detector needs from the data: the local maps' length and voxels, the density
 /// image's pixels, levelling, the skip of recent maps and the match thresholds (issue 16, one place
 /// with the odometry's choices). `v` is the odometry's map voxel.
-void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std::vector<SettingChoice>& choices) {
+void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std::optional<double> given_length,
+                           std::vector<SettingChoice>& choices) {
     double length = 100.0;  // the paper's tau_m
     std::string why = "the paper's 100 m (speed unknown)";
     if (p.planar) {
@@ -103,6 +104,7 @@ void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std
         why = Number(kMapSeconds, 0) + " s at " + Number(p.motion.speed) + " m/s" + (length >= 100.0 ? ", at most the paper's 100 m" : "");
     }
     choices.push_back({"local_map.split_distance", length, {}, why});
+    if (given_length) length = *given_length;  // what scales with the map length follows the user's
     const bool small = p.planar || length < kDrivingMapLength || p.horizontal_fov_deg < kWideFovDeg;
     // Recent maps share the current map's scans: skip by travel (twice a map) rather than by count,
     // which fails when maps are short or the sequence is (METHOD.md 5b).
@@ -164,7 +166,8 @@ void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std
 
 }  // namespace
 
-std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optional<ApertureEstimate>& aperture) {
+std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optional<ApertureEstimate>& aperture,
+                                          std::optional<double> given_map_length) {
     std::vector<SettingChoice> choices;
     if (p.empty()) return choices;
     if (aperture && aperture->contradicts) {
@@ -189,7 +192,7 @@ std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optio
                        "a tenth of a map voxel (KISS-ICP: 0.1 m for 1 m voxels)"});
     choices.push_back({"odometry.deskew", p.has_point_times ? 1.0 : 0.0, {},
                        p.has_point_times ? "the scans carry per-point times" : "no per-point times"});
-    ChooseClosureSettings(p, v, max_range, choices);
+    ChooseClosureSettings(p, v, max_range, given_map_length, choices);
     return choices;
 }
 
@@ -198,8 +201,10 @@ AutoSettings ApplyAutoSettings(PipelineConfig& config, const DataProfile& profil
     result.profile = profile;
     result.aperture = aperture;
     if (aperture && aperture->contradicts) result.profile.horizontal_fov_deg = aperture->measured_deg;
-    result.choices = ChooseSettings(profile, aperture);
     auto schema = MakeConfigSchema(config);
+    std::optional<double> given_map_length;
+    if (config.explicit_keys.count("local_map.split_distance") != 0) given_map_length = schema.Number("local_map.split_distance");
+    result.choices = ChooseSettings(profile, aperture, given_map_length);
     for (auto& choice : result.choices) {
         if (config.explicit_keys.count(choice.key) == 0) {
             schema.ApplyOverride(choice.key + "=" + ValueText(choice));

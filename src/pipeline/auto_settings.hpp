@@ -33,7 +33,10 @@ struct AutoSettings {
 };
 
 /// The settings that follow from `profile` (and a measured aperture), before any are applied.
-std::vector<SettingChoice> ChooseSettings(const DataProfile& profile, const std::optional<ApertureEstimate>& aperture);
+/// `given_map_length`: a local-map length the user gave [m]; the settings that scale with it (the
+/// skip of recent maps, the carry-over radius, the small-scale detector) follow it instead.
+std::vector<SettingChoice> ChooseSettings(const DataProfile& profile, const std::optional<ApertureEstimate>& aperture,
+                                          std::optional<double> given_map_length = std::nullopt);
 
 /// Applies the choices to every key `config` does not give explicitly; warns where an explicit value
 /// is far (3x) from what the data suggests. Deterministic: the same profile gives the same settings.

@@ -84,6 +84,7 @@ TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
     const auto settings = ConfigureFromData(config, data);
     EXPECT_DOUBLE_EQ(config.odometry.voxel_size, 0.7);
     EXPECT_DOUBLE_EQ(config.local_map.split_distance, 42.0);  // the closure detector's settings too
+    EXPECT_DOUBLE_EQ(config.detector.skip_recent_travel, 84.0);  // and what scales with it follows it
     EXPECT_DOUBLE_EQ(config.detector.density.resolution, Chosen(settings, "density.resolution"));
     EXPECT_DOUBLE_EQ(config.odometry.max_range, 100.0);
     EXPECT_TRUE(config.odometry.planar);  // not given: still derived
