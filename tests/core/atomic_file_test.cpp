@@ -16,11 +16,6 @@ namespace revisit {
 namespace {
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 std::size_t CountFiles(const fs::path& folder) {
     std::size_t n = 0;
     for ([[maybe_unused]] const auto& entry : fs::directory_iterator(folder)) ++n;
@@ -31,7 +26,7 @@ TEST(AtomicFile, ReplacesTheFileAndLeavesNoTemporary) {
     test::TempDir dir;
     WriteFileAtomically(dir / "a.txt", std::string_view("first\n"));
     WriteFileAtomically(dir / "a.txt", [](std::ostream& out) { out << "second " << 2 << '\n'; });
-    EXPECT_EQ(ReadAll(dir / "a.txt"), "second 2\n");
+    EXPECT_EQ(test::ReadFile(dir / "a.txt"), "second 2\n");
     EXPECT_EQ(CountFiles(dir.path()), 1u);
 }
 
@@ -48,7 +43,7 @@ TEST(AtomicFile, FullDiskNamesTheFileAndKeepsThePreviousContent) {
         EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
     }
-    EXPECT_EQ(ReadAll(file), "{\"complete\": true}\n");  // untouched, not truncated
+    EXPECT_EQ(test::ReadFile(file), "{\"complete\": true}\n");  // untouched, not truncated
     EXPECT_EQ(CountFiles(disk.path()), 1u);               // the temporary is gone
 }
 
@@ -66,7 +61,7 @@ TEST(AtomicFile, TemporaryPathIsRemovedUnlessCommitted) {
     TemporaryPath path(dir / "out.rawlog");
     std::ofstream(path.path()) << "complete";
     path.Commit();
-    EXPECT_EQ(ReadAll(dir / "out.rawlog"), "complete");
+    EXPECT_EQ(test::ReadFile(dir / "out.rawlog"), "complete");
 }
 
 }  // namespace

@@ -17,11 +17,6 @@
 namespace revisit {
 namespace {
 
-std::string ReadBytes(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
-}
-
 /// Flips, truncates, duplicates or zeroes random bytes of `original` and runs `read` on the result.
 void CorruptAndRead(const std::string& original, const std::filesystem::path& file,
                     const std::function<void(const std::filesystem::path&)>& read, int rounds, unsigned seed) {
@@ -58,10 +53,10 @@ TEST(Corruption, PointCloudFilesAndPoses) {
     scan.points = points;
     SaveKittiBin(dir / "seed.bin", scan);
     WriteKittiPoses(dir / "seed.txt", Poses(5, Eigen::Isometry3d::Identity()));
-    CorruptAndRead(ReadBytes(dir / "seed.ply"), dir / "x.ply", [](const auto& f) { LoadPly(f); }, 300, 1);
-    CorruptAndRead(ReadBytes(dir / "seed.pcd"), dir / "x.pcd", [](const auto& f) { LoadPcd(f); }, 300, 2);
-    CorruptAndRead(ReadBytes(dir / "seed.bin"), dir / "x.bin", [](const auto& f) { LoadKittiBin(f); }, 100, 3);
-    CorruptAndRead(ReadBytes(dir / "seed.txt"), dir / "x.txt", [](const auto& f) { ReadPoses(f); }, 300, 4);
+    CorruptAndRead(test::ReadFile(dir / "seed.ply"), dir / "x.ply", [](const auto& f) { LoadPly(f); }, 300, 1);
+    CorruptAndRead(test::ReadFile(dir / "seed.pcd"), dir / "x.pcd", [](const auto& f) { LoadPcd(f); }, 300, 2);
+    CorruptAndRead(test::ReadFile(dir / "seed.bin"), dir / "x.bin", [](const auto& f) { LoadKittiBin(f); }, 100, 3);
+    CorruptAndRead(test::ReadFile(dir / "seed.txt"), dir / "x.txt", [](const auto& f) { ReadPoses(f); }, 300, 4);
 }
 
 TEST(Corruption, Rawlogs) {
@@ -81,7 +76,7 @@ TEST(Corruption, Rawlogs) {
         while (reader->Next()) {
         }
     };
-    CorruptAndRead(ReadBytes(dir / "seed.rawlog"), dir / "x.rawlog", read_all, 200, 5);
+    CorruptAndRead(test::ReadFile(dir / "seed.rawlog"), dir / "x.rawlog", read_all, 200, 5);
 }
 
 }  // namespace

@@ -22,11 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string ReadBytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 void WriteBytes(const fs::path& file, const std::string& bytes) { std::ofstream(file, std::ios::binary) << bytes; }
 
 /// The DatasetError message of `read(file)`; fails the test when it does not throw one.
@@ -109,7 +104,7 @@ TEST(DamagedInput, TruncatedRawlogsSayWhereReadingStoppedAndHowManyScansWereRead
     ASSERT_EQ(ReadAllScans(logs.plain), 6u);
     ASSERT_EQ(ReadAllScans(logs.gzip), 6u);
     for (const auto& original : {logs.plain, logs.gzip}) {
-        const std::string bytes = ReadBytes(original);
+        const std::string bytes = test::ReadFile(original);
         for (int k = 1; k < 20; ++k) {
             const auto cut = logs.dir / (original == logs.gzip ? "cut.rawlog.gz" : "cut.rawlog");
             // +7: the scans are all the same size, and a plain rawlog cut exactly between two objects is a
@@ -127,7 +122,7 @@ TEST(DamagedInput, TruncatedRawlogsSayWhereReadingStoppedAndHowManyScansWereRead
 
 TEST(DamagedInput, GzipCrcAndBitFlipsAreErrors) {
     Rawlogs logs;
-    std::string bytes = ReadBytes(logs.gzip);
+    std::string bytes = test::ReadFile(logs.gzip);
     std::string crc = bytes;
     crc[crc.size() - 8] ^= 0x01;  // the trailer's CRC-32
     WriteBytes(logs.dir / "crc.rawlog.gz", crc);
@@ -145,7 +140,7 @@ TEST(DamagedInput, GzipCrcAndBitFlipsAreErrors) {
 
 TEST(DamagedInput, ALyingSizeFieldIsAnErrorNotAnAllocation) {
     Rawlogs logs;
-    std::string bytes = ReadBytes(logs.plain);
+    std::string bytes = test::ReadFile(logs.plain);
     // The point cloud stores its point count (uint32) right before the x coordinates; the first x is 1234.5.
     std::uint32_t count = 200;
     float first_x = 1234.5f;
@@ -163,7 +158,7 @@ TEST(DamagedInput, ALyingSizeFieldIsAnErrorNotAnAllocation) {
 
 TEST(DamagedInput, ConvertRefusesToWriteOverItsInput) {
     Rawlogs logs;
-    const auto before = ReadBytes(logs.plain);
+    const auto before = test::ReadFile(logs.plain);
     fs::create_symlink(logs.plain, logs.dir / "link.rawlog");
     for (const auto& output : {logs.plain, logs.dir / "link.rawlog"}) {
         const auto result = test::RunCli("convert " + test::Quote(logs.plain.string()) + " " +
@@ -171,7 +166,7 @@ TEST(DamagedInput, ConvertRefusesToWriteOverItsInput) {
         EXPECT_EQ(result.exit_code, 1) << result.output;
         EXPECT_NE(result.output.find("would destroy the input"), std::string::npos) << result.output;
     }
-    EXPECT_EQ(ReadBytes(logs.plain), before);
+    EXPECT_EQ(test::ReadFile(logs.plain), before);
     // A conversion that fails half-way leaves no output under the final name.
     std::string bytes = before;
     bytes.resize(bytes.size() * 2 / 3 + 5);  // not at an object boundary (see above)

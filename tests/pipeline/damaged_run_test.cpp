@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "test_data.hpp"
 #include "cli.hpp"
 #include "io/reader.hpp"
 #include "io/writer.hpp"
@@ -22,11 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::Quote;
 using test::RunCli;
-
-std::string ReadText(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// One finished run of the first 301 scans (3 local maps), made once; tests damage copies of it.
 const fs::path& GoodRun() {
@@ -61,7 +57,7 @@ fs::path CopyOfGoodRun(const test::TempDir& dir) {
 
 /// Replaces the first occurrence of `from` in line `line` (1: the header) of `file` by `to`.
 void ReplaceInLine(const fs::path& file, int line, const std::string& from, const std::string& to) {
-    std::string text = ReadText(file);
+    std::string text = test::ReadFile(file);
     std::size_t start = 0;
     for (int i = 1; i < line; ++i) start = text.find('\n', start) + 1;
     const auto at = text.find(from, start);
@@ -115,7 +111,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         const fs::path run = CopyOfGoodRun(dir);
         // NaN in a map pose, then a resolution no run writes: errors with file and line, not solver text.
         const auto maps = RunFolder(run).local_maps_csv();
-        const std::string original = ReadText(maps);
+        const std::string original = test::ReadFile(maps);
         const auto table = CsvTable::Read(maps);
         ASSERT_GE(table.size(), 2u);
         ReplaceInLine(maps, 3, "," + table.Text(1, "density_resolution") + ",", ",1e-300,");
@@ -124,7 +120,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         EXPECT_NE(tiny.output.find("local_maps.csv:3: density_resolution"), std::string::npos) << tiny.output;
         std::ofstream(maps, std::ios::binary) << original;
         // The translation x of the corrected pose: the 13th field from the end of row 1 (12 T_ground_map fields follow).
-        std::string row = ReadText(maps).substr(ReadText(maps).find('\n') + 1);
+        std::string row = test::ReadFile(maps).substr(test::ReadFile(maps).find('\n') + 1);
         row = row.substr(0, row.find('\n'));
         std::size_t at = row.size();
         for (int i = 0; i < 13; ++i) at = row.rfind(',', at - 1);
@@ -139,7 +135,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         test::TempDir dir;
         const fs::path run = CopyOfGoodRun(dir);
         const auto file = RunFolder(run).closures_csv();
-        const std::string header = ReadText(file).substr(0, ReadText(file).find('\n'));
+        const std::string header = test::ReadFile(file).substr(0, test::ReadFile(file).find('\n'));
         // One closure row: identity poses, except a NaN translation.
         std::string row;
         std::size_t start = 0;
@@ -167,7 +163,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         test::TempDir dir;
         const fs::path run = CopyOfGoodRun(dir);
         const auto database = RunFolder(run).database();
-        std::string bytes = ReadText(database);
+        std::string bytes = test::ReadFile(database);
         bytes[bytes.size() / 2] ^= 0x5a;
         std::ofstream(database, std::ios::binary) << bytes;
         const auto report = RunCli("report " + Quote(run.string()));
@@ -186,7 +182,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         test::TempDir dir;
         const fs::path run = CopyOfGoodRun(dir);
         const auto png = RunFolder(run).map_density(0);
-        std::string bytes = ReadText(png);
+        std::string bytes = test::ReadFile(png);
         ASSERT_GT(bytes.size(), 24u);
         const unsigned char side[4] = {0x00, 0x00, 0x4e, 0x20};  // 20000, big-endian
         bytes.replace(16, 4, reinterpret_cast<const char*>(side), 4);
@@ -234,7 +230,7 @@ TEST(DamagedRun, TruncatedRawlogFailsUnlessAllowedAndThenSaysSo) {
         for (int i = 0; i < 80; ++i) writer->Write(*reader->Next());
         writer->Finish();
     }
-    std::string bytes = ReadText(rawlog);
+    std::string bytes = test::ReadFile(rawlog);
     bytes.resize(bytes.size() * 3 / 4);
     std::ofstream(rawlog, std::ios::binary) << bytes;
     const std::string run = "run " + Quote(rawlog.string()) + " --quiet --set output.write_report=false --out ";
@@ -245,7 +241,7 @@ TEST(DamagedRun, TruncatedRawlogFailsUnlessAllowedAndThenSaysSo) {
     const auto allowed = RunCli(run + Quote((dir / "b").string()) + " --allow-truncated");
     EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
     EXPECT_NE(allowed.output.find("warning: --allow-truncated"), std::string::npos) << allowed.output;
-    const std::string info = ReadText(dir / "b" / "run.json");
+    const std::string info = test::ReadFile(dir / "b" / "run.json");
     EXPECT_NE(info.find("\"truncated\": true"), std::string::npos) << info;
     const RunState state = ReadRunState(RunFolder::Open(dir / "b"));
     EXPECT_GT(state.odometry.size(), 20u);
@@ -272,8 +268,8 @@ TEST(DamagedRun, CtrlCDuringTheReportExitsWith130) {
     int status = 0;
     waitpid(pid, &status, 0);
     ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 130) << ReadText(log);
-    EXPECT_NE(ReadText(log).find("interrupted during evaluation or the report"), std::string::npos) << ReadText(log);
+    EXPECT_EQ(WEXITSTATUS(status), 130) << test::ReadFile(log);
+    EXPECT_NE(test::ReadFile(log).find("interrupted during evaluation or the report"), std::string::npos) << test::ReadFile(log);
     EXPECT_TRUE(ReadRunState(RunFolder::Open(out)).complete);  // the chain itself finished
 }
 

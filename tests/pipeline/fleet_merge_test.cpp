@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "test_data.hpp"
 #include "fleet_sessions.hpp"
 
 namespace revisit {
@@ -13,14 +14,7 @@ namespace fs = std::filesystem;
 using test::Quote;
 using test::RunCli;
 
-std::string ReadText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-nlohmann::json Sessions(const fs::path& merge) { return nlohmann::json::parse(ReadText(merge / "sessions.json")); }
+nlohmann::json Sessions(const fs::path& merge) { return nlohmann::json::parse(test::ReadFile(merge / "sessions.json")); }
 
 TEST(Merge, RunAgainstJoinsTheNewSessionAndMergeGivesTheSameInAnyOrder) {
     auto& fleet = test::Fleet();
@@ -60,11 +54,11 @@ TEST(Merge, RunAgainstJoinsTheNewSessionAndMergeGivesTheSameInAnyOrder) {
     ASSERT_EQ(ab.exit_code, 0) << ab.output;
     ASSERT_EQ(ba.exit_code, 0) << ba.output;
     for (const char* file : {"sessions.json", "cross_closures.csv", "session_00_poses_kitti.txt", "session_01_poses_tum.txt"})
-        EXPECT_EQ(ReadText(one / file), ReadText(two / file)) << file;
-    EXPECT_EQ(ReadText(one / "sessions.json"), ReadText(run_b / "merge" / "sessions.json"));
+        EXPECT_EQ(test::ReadFile(one / file), test::ReadFile(two / file)) << file;
+    EXPECT_EQ(test::ReadFile(one / "sessions.json"), test::ReadFile(run_b / "merge" / "sessions.json"));
     // The merge's page: both sessions in their colours, connected, and the cross closures.
-    const std::string page = ReadText(one / "index.html");
-    EXPECT_EQ(page, ReadText(two / "index.html"));
+    const std::string page = test::ReadFile(one / "index.html");
+    EXPECT_EQ(page, test::ReadFile(two / "index.html"));
     EXPECT_NE(page.find("sessions.svg"), std::string::npos);
     EXPECT_NE(page.find("Cross-session closures"), std::string::npos);
     EXPECT_EQ(page.find(">NO<"), std::string::npos) << "both sessions are connected";

@@ -23,13 +23,6 @@ std::string FindChromium() {
     return "";
 }
 
-std::string ReadText(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 /// Runs headless Chromium on a file and returns its standard output (stderr goes to `log`).
 std::string RunChromium(const std::string& chromium, const std::filesystem::path& scratch, const std::string& arguments,
                         const std::filesystem::path& page) {
@@ -42,7 +35,7 @@ std::string RunChromium(const std::string& chromium, const std::filesystem::path
                                 arguments + " 'file://" + page.string() + "' > '" + out.string() + "' 2> '" +
                                 (scratch / "chromium.log").string() + "'";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    return ReadText(out);
+    return test::ReadFile(out);
 }
 
 /// A probe page beside `page` that loads it in an iframe and reports its images once everything has loaded.
@@ -130,7 +123,7 @@ TEST_F(ChromiumReport, IndexClosureMapAndOnDemandPagesLoadWithoutBrokenImages) {
         const ImageCheck check = CheckImages(chromium_, Scratch(), Report() / page);
         EXPECT_GE(check.images, min_images) << page << ": " << check.detail;
         EXPECT_EQ(check.broken, 0) << page << ": " << check.detail;
-        EXPECT_EQ(ReadText(Scratch() / "chromium.log").find("Uncaught"), std::string::npos) << page << ": a script error";
+        EXPECT_EQ(test::ReadFile(Scratch() / "chromium.log").find("Uncaught"), std::string::npos) << page << ": a script error";
         if (page == "index.html") {
             // The inline script ran: a filter box above each sortable table (32 candidates, 20 maps).
             EXPECT_EQ(check.filters, 2) << check.detail;
@@ -141,7 +134,7 @@ TEST_F(ChromiumReport, IndexClosureMapAndOnDemandPagesLoadWithoutBrokenImages) {
 
 TEST_F(ChromiumReport, ProbeDetectsABrokenImage) {
     // Guard against a probe that always says "fine": a page with a missing picture must be caught.
-    std::string html = ReadText(Report() / "closure_0000.html");
+    std::string html = test::ReadFile(Report() / "closure_0000.html");
     html = std::regex_replace(html, std::regex("closure_0000_matches\\.png"), "missing_picture.png");
     std::ofstream(Report() / "broken.html") << html;
     const ImageCheck check = CheckImages(chromium_, Scratch(), Report() / "broken.html");

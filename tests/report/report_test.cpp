@@ -25,13 +25,6 @@
 namespace revisit {
 namespace {
 
-std::string ReadText(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 int CountColor(const cv::Mat& bgr, Rgb color, int tolerance = 12) {
     cv::Mat mask;
     cv::inRange(bgr, color.Bgr() - cv::Scalar::all(tolerance), color.Bgr() + cv::Scalar::all(tolerance), mask);
@@ -112,7 +105,7 @@ TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     EXPECT_EQ(pages.size(), 10u);
     int images = 0;
     for (const auto& page : pages) {
-        const std::string html = ReadText(dir / page);
+        const std::string html = test::ReadFile(dir / page);
         EXPECT_EQ(html.find("http://"), std::string::npos) << page;  // self-contained: no network
         EXPECT_EQ(html.find("https://"), std::string::npos) << page;
         // Only the index has a script (sorting and filtering its tables), inline.
@@ -162,15 +155,15 @@ TEST(WriteReport, PagesReferenceOnlyExistingFilesAndImagesShowTheirContent) {
     // (map 0 is the reference of closure 0) and to the other map's page.
     const cv::Mat map_picture = cv::imread((dir / "map_0000_density.png").string());
     EXPECT_GT(CountColor(map_picture, palette::kKeypoint, 30), 100);
-    const std::string map_page = ReadText(dir / "map_0000.html");
+    const std::string map_page = test::ReadFile(dir / "map_0000.html");
     EXPECT_NE(map_page.find("href=\"closure_0000.html\""), std::string::npos);
     EXPECT_NE(map_page.find("href=\"map_0010.html\""), std::string::npos);
     // A map without a page is a row of the index's table naming the command that renders it on demand.
-    const std::string index = ReadText(dir / "index.html");
+    const std::string index = test::ReadFile(dir / "index.html");
     EXPECT_EQ(index.find("href=\"map_0019.html\""), std::string::npos);
     EXPECT_NE(index.find("revisit inspect RUN_DIR --map 19"), std::string::npos);
     WriteSingleMapPage(input, 5, dir.path(), SmallPictures());
-    EXPECT_NE(ReadText(dir / "map_0005.html").find("No closure candidate involves this map"), std::string::npos);
+    EXPECT_NE(test::ReadFile(dir / "map_0005.html").find("No closure candidate involves this map"), std::string::npos);
     EXPECT_THROW(WriteSingleMapPage(input, 20, dir.path(), SmallPictures()), std::out_of_range);
 
     // 3D views: both map colours.
@@ -198,7 +191,7 @@ TEST(WriteReport, IsTheSameAtAnyThreadCount) {
     int compared = 0;
     for (const auto& entry : std::filesystem::directory_iterator(a.path())) {
         const auto name = entry.path().filename();
-        EXPECT_EQ(ReadText(entry.path()), ReadText(b / name.string())) << name;
+        EXPECT_EQ(test::ReadFile(entry.path()), test::ReadFile(b / name.string())) << name;
         ++compared;
     }
     EXPECT_EQ(compared, static_cast<int>(std::distance(std::filesystem::directory_iterator(b.path()), {})));
@@ -240,7 +233,7 @@ TEST(WriteReport, HundredsOfCandidatesGetTableRowsAndPagesOnlyForTheBoundedSet) 
     EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
 
     // Every candidate is one row of the index's table; those without a page name the command that renders it.
-    const std::string index = ReadText(dir / "index.html");
+    const std::string index = test::ReadFile(dir / "index.html");
     const std::size_t rows = CountOf(index, "<tr class=\"status-");
     EXPECT_EQ(rows, 403u);
     EXPECT_EQ(CountOf(index, "revisit inspect RUN_DIR --closure "), 403u - 7u + 1u);  // + the sentence above the table
@@ -255,7 +248,7 @@ TEST(WriteReport, HundredsOfCandidatesGetTableRowsAndPagesOnlyForTheBoundedSet) 
     ASSERT_FALSE(closure_pages.count(ClosureStem(listed) + ".html"));
     const auto page = WriteClosurePage(input, listed, dir.path(), config);
     EXPECT_EQ(page.filename(), "closure_0250.html");
-    const std::string html = ReadText(page);
+    const std::string html = test::ReadFile(page);
     EXPECT_NE(html.find("href=\"index.html\""), std::string::npos);
     EXPECT_NE(html.find("below the acceptance threshold"), std::string::npos);
     for (const auto& ref : References(html)) {
@@ -277,13 +270,13 @@ TEST(WriteReport, RunWithoutGroundTruthOrStoredMapsStillGivesValidPages) {
     input.load_global_map = nullptr;
     const ReportStats stats = WriteReport(input, dir.path(), SmallPictures());
     EXPECT_EQ(stats.pages, 1 + 3 + 6);
-    EXPECT_NE(ReadText(dir / "map_0002.html").find("No map data available"), std::string::npos);
-    const std::string index = ReadText(dir / "index.html");
+    EXPECT_NE(test::ReadFile(dir / "map_0002.html").find("No map data available"), std::string::npos);
+    const std::string index = test::ReadFile(dir / "index.html");
     EXPECT_NE(index.find("No evaluation in this run"), std::string::npos);
     EXPECT_EQ(index.find("precision_recall.svg"), std::string::npos);
-    EXPECT_NE(ReadText(dir / "closure_0000.html").find("No map data available"), std::string::npos);
+    EXPECT_NE(test::ReadFile(dir / "closure_0000.html").find("No map data available"), std::string::npos);
     for (const auto& page : {"index.html", "closure_0000.html", "closure_0002.html"})
-        for (const auto& ref : References(ReadText(dir / page))) {
+        for (const auto& ref : References(test::ReadFile(dir / page))) {
             if (ref == "data:,") continue;
             EXPECT_TRUE(std::filesystem::exists(dir / ref)) << page << " references missing " << ref;
         }
@@ -307,7 +300,7 @@ TEST(WriteMapPairPage, ShowsAnyTwoMapsAtTheirOdometryPose) {
         return keypoints;
     };
     const auto page = WriteMapPairPage(input, 12, 3, dir.path(), SmallPictures());
-    const std::string html = ReadText(page);
+    const std::string html = test::ReadFile(page);
     EXPECT_NE(html.find("not a detected closure"), std::string::npos);
     for (const auto& ref : References(html)) {
         if (ref == "data:,") continue;
@@ -328,7 +321,7 @@ TEST(ReportTemplates, ComeFromShareAndMissingOnesAreNamed) {
     // Every page inlines the stylesheet from the file, so restyling needs no rebuild.
     test::TempDir dir;
     WriteReport(SmallRun(), dir.path(), SmallPictures());
-    EXPECT_NE(ReadText(dir / "closure_0000.html").find(templates.style), std::string::npos);
+    EXPECT_NE(test::ReadFile(dir / "closure_0000.html").find(templates.style), std::string::npos);
 
     test::TempDir empty;
     try {

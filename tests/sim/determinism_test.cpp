@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "test_data.hpp"
 #include "io/writer.hpp"
 #include "sim/presets.hpp"
 
@@ -58,11 +59,6 @@ TEST(Determinism, SameSeedSameScansWithOneOrTwoThreads) {
     }
 }
 
-std::string ReadAll(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(Determinism, SameSeedByteIdenticalKittiFolders) {
     const auto root = std::filesystem::temp_directory_path() / ("revisit_sim_determinism_" + std::to_string(::getpid()));
     std::filesystem::remove_all(root);
@@ -73,7 +69,7 @@ TEST(Determinism, SameSeedByteIdenticalKittiFolders) {
         if (!entry.is_regular_file()) continue;
         const auto relative = std::filesystem::relative(entry.path(), root / "a");
         ASSERT_TRUE(std::filesystem::exists(root / "b" / relative)) << relative;
-        EXPECT_EQ(ReadAll(entry.path()), ReadAll(root / "b" / relative)) << relative;
+        EXPECT_EQ(test::ReadFile(entry.path()), test::ReadFile(root / "b" / relative)) << relative;
         ++files;
     }
     EXPECT_GE(files, 6u + 3u);  // scans, poses, times (+ calib, sim.yaml)

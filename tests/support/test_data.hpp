@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -13,6 +15,12 @@ inline std::filesystem::path SharedData(const std::string& relative) {
 }
 inline std::filesystem::path MrptDataset(const std::string& name) {
     return std::filesystem::path(REVISIT_MRPT_DATASETS) / name;
+}
+
+/// A whole file's bytes (empty when it cannot be read).
+inline std::string ReadFile(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Skips the calling test when a data file or folder is absent (e.g. no ../shared on a user's machine).
