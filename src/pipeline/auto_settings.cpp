@@ -239,6 +239,16 @@ AutoSettings ConfigureFromData(PipelineConfig& config, const std::filesystem::pa
     std::vector<Scan> profiled;  // the first scans, registered again once the odometry's settings are known
     std::optional<MotionMeter> motion;
     DataProfile profile;
+    // The odometry's settings follow from the profile; with them, the speed (the local maps' length)
+    // from the same first scans and those that follow.
+    const auto start_motion = [&] {
+        profile = profiler.Profile();
+        PipelineConfig odometry_config = config;
+        ApplyAutoSettings(odometry_config, profile, checker.Estimate());
+        motion.emplace(odometry_config.odometry);
+        for (const auto& s : profiled) motion->Add(s);
+        profiled.clear();
+    };
     std::size_t read = 0;
     bool planar_beams = false;
     try {
@@ -250,14 +260,7 @@ AutoSettings ConfigureFromData(PipelineConfig& config, const std::filesystem::pa
                 profiler.Add(*scan);
                 profiled.push_back(std::move(*scan));
                 if (!profiler.Done()) continue;
-                // The odometry's settings follow from the profile; with them, the speed (the local
-                // maps' length) from the same first scans and those that follow.
-                profile = profiler.Profile();
-                PipelineConfig odometry_config = config;
-                ApplyAutoSettings(odometry_config, profile, checker.Estimate());
-                motion.emplace(odometry_config.odometry);
-                for (const auto& s : profiled) motion->Add(s);
-                profiled.clear();
+                start_motion();
             } else if (!motion->Done()) {
                 motion->Add(*scan);
             }
@@ -269,13 +272,7 @@ AutoSettings ConfigureFromData(PipelineConfig& config, const std::filesystem::pa
         // (or keeps the scans with --allow-truncated).
         if (read == 0) throw;
     }
-    if (!motion) {  // fewer scans than the profile wanted
-        profile = profiler.Profile();
-        PipelineConfig odometry_config = config;
-        ApplyAutoSettings(odometry_config, profile, checker.Estimate());
-        motion.emplace(odometry_config.odometry);
-        for (const auto& s : profiled) motion->Add(s);
-    }
+    if (!motion) start_motion();  // fewer scans than the profile wanted
     profile.motion = motion->Profile();
     return ApplyAutoSettings(config, profile, checker.Estimate());
 }
