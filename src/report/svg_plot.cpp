@@ -24,12 +24,6 @@ std::string Tick(double v) {
     return text;
 }
 
-std::string Color(Rgb c) {
-    char text[8];
-    std::snprintf(text, sizeof(text), "#%02x%02x%02x", c.r, c.g, c.b);
-    return text;
-}
-
 double TickStep(double range) {
     const double raw = range / 5.0;
     const double power = std::pow(10.0, std::floor(std::log10(raw)));
@@ -69,6 +63,12 @@ std::string EscapeXml(const std::string& text) {
         }
     }
     return out;
+}
+
+std::string CssColor(Rgb c) {
+    char text[8];
+    std::snprintf(text, sizeof(text), "#%02x%02x%02x", c.r, c.g, c.b);
+    return text;
 }
 
 Rgb SeriesColor(std::size_t index) {
@@ -115,7 +115,7 @@ std::string LinePlotSvg(const LinePlotSpec& spec) {
     svg << "<clipPath id=\"plot\"><rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << Num(plot_w)
         << "\" height=\"" << Num(plot_h) << "\"/></clipPath>\n<g clip-path=\"url(#plot)\">\n";
     for (const auto& s : spec.series) {
-        svg << "<polyline fill=\"none\" stroke-width=\"2\" stroke=\"" << Color(s.color) << '"'
+        svg << "<polyline fill=\"none\" stroke-width=\"2\" stroke=\"" << CssColor(s.color) << '"'
             << (s.dashed ? " stroke-dasharray=\"6 4\"" : "") << " points=\"";
         for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
             if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) svg << Num(X(s.x[i])) << ',' << Num(Y(s.y[i])) << ' ';
@@ -123,14 +123,14 @@ std::string LinePlotSvg(const LinePlotSpec& spec) {
     }
     svg << "</g>\n";
     for (const auto& m : spec.markers)
-        svg << "<circle cx=\"" << Num(X(m.x)) << "\" cy=\"" << Num(Y(m.y)) << "\" r=\"5\" fill=\"" << Color(m.color)
+        svg << "<circle cx=\"" << Num(X(m.x)) << "\" cy=\"" << Num(Y(m.y)) << "\" r=\"5\" fill=\"" << CssColor(m.color)
             << "\" stroke=\"#000\"/><text x=\"" << Num(X(m.x) + 8) << "\" y=\"" << Num(Y(m.y) - 8) << "\">"
             << EscapeXml(m.label) << "</text>\n";
     // Legend, top right inside the plot.
     for (std::size_t i = 0; i < spec.series.size(); ++i) {
         const double y = kTop + 14 + 18.0 * i, x = kLeft + plot_w - 170;
         svg << "<line x1=\"" << Num(x) << "\" y1=\"" << Num(y) << "\" x2=\"" << Num(x + 24) << "\" y2=\"" << Num(y)
-            << "\" stroke-width=\"3\" stroke=\"" << Color(spec.series[i].color) << '"'
+            << "\" stroke-width=\"3\" stroke=\"" << CssColor(spec.series[i].color) << '"'
             << (spec.series[i].dashed ? " stroke-dasharray=\"6 4\"" : "") << "/><text x=\"" << Num(x + 30) << "\" y=\""
             << Num(y + 4) << "\">" << EscapeXml(spec.series[i].name) << "</text>\n";
     }
@@ -153,7 +153,7 @@ std::string BarChartSvg(const std::string& title, const std::vector<std::pair<st
         const double w = std::max(0.0, bars[i].second) / max_value * plot_w;
         svg << "<text x=\"" << label_w - 8 << "\" y=\"" << Num(y + 17) << "\" text-anchor=\"end\">"
             << EscapeXml(bars[i].first) << "</text><rect x=\"" << label_w << "\" y=\"" << Num(y + 4) << "\" width=\""
-            << Num(w) << "\" height=\"" << row - 8 << "\" fill=\"" << Color(color) << "\"/><text x=\""
+            << Num(w) << "\" height=\"" << row - 8 << "\" fill=\"" << CssColor(color) << "\"/><text x=\""
             << Num(label_w + w + 6) << "\" y=\"" << Num(y + 17) << "\">" << Tick(std::round(bars[i].second * 1000) / 1000)
             << ' ' << EscapeXml(unit) << "</text>\n";
     }
@@ -191,12 +191,12 @@ std::string ColoredPathSvg(const std::string& title, const std::vector<std::pair
     for (std::size_t i = 0; i + 1 < n; ++i)
         svg << "<line x1=\"" << Num(X(xy[i].first)) << "\" y1=\"" << Num(Y(xy[i].second)) << "\" x2=\""
             << Num(X(xy[i + 1].first)) << "\" y2=\"" << Num(Y(xy[i + 1].second)) << "\" stroke-width=\"3\" stroke=\""
-            << Color(ramp(values[i] / v_max)) << "\"/>\n";
+            << CssColor(ramp(values[i] / v_max)) << "\"/>\n";
     // Colour bar with its scale; a 1-2-5 scale bar in metres below the path.
     const double bx = width - bar_w + 10;
     for (int k = 0; k < 50; ++k)
         svg << "<rect x=\"" << Num(bx) << "\" y=\"" << Num(kTop + plot_h * (1.0 - (k + 1) / 50.0)) << "\" width=\"16\" height=\""
-            << Num(plot_h / 50.0 + 0.5) << "\" fill=\"" << Color(ramp((k + 0.5) / 50.0)) << "\"/>\n";
+            << Num(plot_h / 50.0 + 0.5) << "\" fill=\"" << CssColor(ramp((k + 0.5) / 50.0)) << "\"/>\n";
     svg << "<text x=\"" << Num(bx + 20) << "\" y=\"" << kTop + 10 << "\">" << Tick(std::round(v_max * 100) / 100)
         << "</text><text x=\"" << Num(bx + 20) << "\" y=\"" << Num(kTop + plot_h) << "\">0</text>\n"
         << "<text x=\"" << Num(bx) << "\" y=\"" << Num(kTop + plot_h + 18) << "\">" << EscapeXml(value_label) << "</text>\n";

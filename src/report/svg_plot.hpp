@@ -51,6 +51,9 @@ std::string ColoredPathSvg(const std::string& title, const std::vector<std::pair
 /// Categorical colours for series (distinct, colour-blind friendly order).
 Rgb SeriesColor(std::size_t index);
 
+/// "#rrggbb", for SVG and CSS.
+std::string CssColor(Rgb c);
+
 /// Escapes &, <, >, " and ' for XML/HTML text and attributes.
 std::string EscapeXml(const std::string& text);
 
