@@ -30,7 +30,7 @@ std::string SessionRow(const MergeResult& result, std::size_t s) {
 
 std::string MergeReportHtml(const MergeResult& result) {
     HtmlPage page("revisit merge");
-    page.Heading("Sessions in one frame", 1)
+    page.Heading("Sessions in one frame")
         .Paragraph("The common frame is the odometry frame of session 0 (the anchor). A session is placed only when verified "
                    "cross-session closures tie it to the anchor; an unconnected session is listed, never drawn at the origin.")
         .Figure("sessions.svg", "The connected sessions' corrected trajectories in the common frame, one colour each; "
