@@ -9,6 +9,7 @@
 #include "odometry/lidar_odometry.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/progress.hpp"
+#include "pipeline/scene_scale_watch.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {
@@ -27,6 +28,7 @@ int RunOdometry(const OdometryOptions& o) {
     auto reader = OpenDataset(o.dataset, reader_options);
     PrepareOutputFolder(o.out, o.force);
     LidarOdometry odometry(config.odometry);
+    SceneScaleWatch scene_scale(config);
     Trajectory trajectory;
     Progress progress(std::cerr, Progress::DetectMode(o.quiet), reader->Info().num_scans);
     InstallInterruptHandler();
@@ -34,6 +36,10 @@ int RunOdometry(const OdometryOptions& o) {
     while (auto scan = reader->Next()) {
         if (InterruptRequested()) break;
         trajectory.poses.push_back(odometry.RegisterScan(*scan));
+        if (auto update = scene_scale.Add(trajectory.size() - 1, *scan)) {
+            odometry.SetMaxRange(update->to);
+            progress.Message(DescribeUpdate(*update));
+        }
         if (!odometry.LastStats().warning.empty() && odometry.NumDegenerateFrames() <= kShownWarnings) {
             progress.Message("warning: " + odometry.LastStats().warning);
         }

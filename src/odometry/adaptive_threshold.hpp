@@ -20,6 +20,8 @@ class AdaptiveThreshold {
     /// sigma = sqrt(mean of the counted model errors^2) [m], or the initial threshold before any.
     double Sigma() const;
     std::size_t NumSamples() const { return num_samples_; }
+    /// The lever arm of later model errors (the crop radius changed mid-run; earlier errors stay).
+    void SetMaxRange(double max_range) { max_range_ = max_range; }
 
   private:
     double initial_threshold_;

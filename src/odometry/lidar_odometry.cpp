@@ -57,6 +57,14 @@ LidarOdometry::LidarOdometry(const OdometryConfig& config)
       map_(config.VoxelSize(), config.max_points_per_voxel),
       threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {}
 
+void LidarOdometry::SetMaxRange(double max_range) {
+    OdometryConfig changed = config_;
+    if (changed.voxel_size == 0.0) changed.voxel_size = config_.VoxelSize();  // the map's voxels stay
+    changed.max_range = max_range;
+    config_ = Validated(changed);
+    threshold_.SetMaxRange(max_range);
+}
+
 Eigen::Isometry3d LidarOdometry::PredictMotion(const Scan& scan) {
     if (config_.use_prior && scan.T_odom_sensor && last_T_odom_sensor_) {
         stats_.prior_used = true;

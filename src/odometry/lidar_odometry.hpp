@@ -50,6 +50,10 @@ class LidarOdometry {
     const OdometryFrameStats& LastStats() const { return stats_; }
     const VoxelHashMap& LocalMap() const { return map_; }
     const OdometryConfig& config() const { return config_; }
+    /// Changes the range crop (and the map radius, the adaptive threshold's lever arm) from the next
+    /// scan on; the map's voxels stay. For a scene whose scale changes (pipeline/scene_scale_watch.hpp).
+    /// Throws ConfigError unless min_range < max_range.
+    void SetMaxRange(double max_range);
     /// Count of frames that only got the prediction.
     std::size_t NumDegenerateFrames() const { return num_degenerate_; }
 

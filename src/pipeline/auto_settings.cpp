@@ -166,6 +166,8 @@ void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std
 
 }  // namespace
 
+double MaxRangeFor(double range_p99) { return std::clamp(std::ceil(1.5 * range_p99 / 10.0) * 10.0, 30.0, 300.0); }
+
 std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optional<ApertureEstimate>& aperture,
                                           std::optional<double> given_map_length) {
     std::vector<SettingChoice> choices;
@@ -180,7 +182,7 @@ std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optio
     choices.push_back({"odometry.planar", p.planar ? 1.0 : 0.0, {},
                        p.planar ? "every point lies at z = 0 (a 2D laser): x, y, yaw only" : "3D points"});
     // The map radius: everything the sensor sees except stray far returns.
-    const double max_range = std::clamp(std::ceil(1.5 * p.range_p99 / 10.0) * 10.0, 30.0, 300.0);
+    const double max_range = MaxRangeFor(p.range_p99);
     choices.push_back({"odometry.max_range", max_range, {},
                        "99% of the points lie within " + Number(p.range_p99, 1) + " m (x 1.5)"});
     choices.push_back({"odometry.min_range", std::min(RoundTo(0.5 * p.range_p01, 0.05), 3.0), {},

@@ -32,6 +32,10 @@ struct AutoSettings {
     std::vector<std::string> Describe() const;
 };
 
+/// The odometry's crop radius for a scene whose points lie within `range_p99` [m] (99%): 1.5 x that,
+/// in 10 m steps, within [30, 300] m. Used at the start and as the scene unfolds (SceneScaleWatch).
+double MaxRangeFor(double range_p99);
+
 /// The settings that follow from `profile` (and a measured aperture), before any are applied.
 /// `given_map_length`: a local-map length the user gave [m]; the settings that scale with it (the
 /// skip of recent maps, the carry-over radius, the small-scale detector) follow it instead.

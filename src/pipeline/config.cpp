@@ -7,6 +7,8 @@ using Range = ConfigSchema::Range;
 void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("input.auto_settings", &c.input.auto_settings, "",
           "derive every setting no --config/--set gave from the first scans (ranges, field of view, points per scan); false: the defaults below");
+    s.Add("input.follow_scene_scale", &c.input.follow_scene_scale, "",
+          "with auto_settings: odometry.max_range follows the scene's 99% range as the sequence unfolds (when not given)");
     s.Add("input.kitti_vertical_correction", &c.input.kitti_vertical_correction, "",
           "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (METHOD.md 1)");
     s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all)");

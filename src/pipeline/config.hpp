@@ -23,6 +23,9 @@ namespace revisit {
 struct InputConfig {
     /// Derive the settings no file or --set gave from the first scans (src/pipeline/auto_settings.hpp).
     bool auto_settings = true;
+    /// With auto_settings and no given odometry.max_range: the crop radius follows the scene's scale as
+    /// the sequence unfolds (src/pipeline/scene_scale_watch.hpp).
+    bool follow_scene_scale = true;
     bool kitti_vertical_correction = false;  ///< KITTI HDL-64E: rotate points by 0.205 deg (configs/kitti.yaml)
     std::string sensor_label;                ///< rawlogs: only this sensor ("" = all)
     double laser_aperture_deg = 0.0;         ///< [deg] 2D lasers: replaces the file's aperture (0: keep)

@@ -21,6 +21,7 @@
 #include "pipeline/online.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run_files.hpp"
+#include "pipeline/scene_scale_watch.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
@@ -167,6 +168,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     };
     std::optional<LidarOdometry> odometry;
     if (options.poses == PoseSource::kOdometry) odometry.emplace(config.odometry);
+    SceneScaleWatch scene_scale(config);
 
     RunState state;
     state.dataset = fs::absolute(options.dataset).string();
@@ -203,6 +205,11 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
             if (odometry->LastStats().degenerate) {
                 state.odometry_fallbacks.push_back(position);
                 if (state.odometry_fallbacks.size() <= kShownFallbacks) progress.Message("warning: " + odometry->LastStats().warning);
+            }
+            if (auto update = scene_scale.Add(position, *scan)) {
+                odometry->SetMaxRange(update->to);
+                progress.Message(DescribeUpdate(*update));
+                state.setting_updates.push_back(std::move(*update));
             }
             time("odometry", odometry_start);
         } else if (options.poses == PoseSource::kDataset) {

@@ -158,6 +158,12 @@ Trajectory WithTimes(const RunState& state, const Poses& poses) {
     return t;
 }
 
+json SettingUpdatesJson(const std::vector<SettingUpdate>& updates) {
+    json out = json::array();
+    for (const auto& u : updates) out.push_back({{"scan", u.scan}, {"key", u.key}, {"from", u.from}, {"to", u.to}, {"reason", u.reason}});
+    return out;
+}
+
 }  // namespace
 
 void WriteClosureDetail(const fs::path& file, const Closure& c) {
@@ -226,6 +232,7 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
                                {"maps", state.maps.size()}, {"closures", state.closures.size()},
                                {"accepted_closures", state.NumAccepted()}, {"wall_seconds", state.wall_seconds},
                                {"peak_rss_kb", state.peak_rss_kb}, {"odometry_fallbacks", state.odometry_fallbacks},
+                               {"setting_updates", SettingUpdatesJson(state.setting_updates)},
                                {"revisit_version", "0.1.0"}});
 }
 
@@ -241,6 +248,10 @@ RunState ReadRunState(const RunFolder& run) {
         state.wall_seconds = info.value("wall_seconds", 0.0);
         state.peak_rss_kb = Count(info, "peak_rss_kb", run.run_info());
         state.odometry_fallbacks = info.value("odometry_fallbacks", std::vector<std::size_t>{});
+        for (const auto& u : info.value("setting_updates", json::array())) {
+            state.setting_updates.push_back({u.at("scan").get<std::size_t>(), u.at("key").get<std::string>(), u.at("from").get<double>(),
+                                             u.at("to").get<double>(), u.at("reason").get<std::string>()});
+        }
     } catch (const json::exception& e) {
         throw DatasetError(run.run_info(), std::string("malformed run info: ") + e.what());
     }

@@ -38,6 +38,15 @@ struct ClosureRecord {
     double graph_weight = 0.0;       ///< final robust weight in the pose graph (verified closures only)
 };
 
+/// A setting changed mid-run because the data changed (issue 14: "updated as the sequence unfolds").
+struct SettingUpdate {
+    std::size_t scan = 0;  ///< position of the first scan processed with the new value
+    std::string key;       ///< e.g. "odometry.max_range"
+    double from = 0.0;
+    double to = 0.0;
+    std::string reason;
+};
+
 /// Accumulated wall time per stage.
 struct StageTimer {
     double total_ms = 0.0;
@@ -58,6 +67,7 @@ struct RunState {
     /// Scans (positions in `odometry`) whose pose is only the motion prediction: the odometry found the
     /// scan degenerate or its registration diverged (issue 14: divergence is reported, never hidden).
     std::vector<std::size_t> odometry_fallbacks;
+    std::vector<SettingUpdate> setting_updates;  ///< settings that followed the data mid-run
     std::vector<MapRecordSummary> maps;
     std::vector<ClosureRecord> closures;
     std::vector<MapComparison> comparisons;  ///< the density detector's skipped, voted-for and compared pairs

@@ -4,6 +4,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "pipeline/scene_scale_watch.hpp"
+
 namespace revisit {
 
 namespace {
@@ -62,6 +64,7 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
             << " scans (first at scan " << state.odometry_fallbacks.front()
             << "): their poses are motion predictions, marked in the report\n";
     }
+    for (const auto& update : state.setting_updates) out << "  setting           " << DescribeUpdate(update) << '\n';
     out << '\n';
     out << "  stage                           total [s]    mean [ms]    calls\n";
     for (const auto& [stage, timer] : state.timings) {

@@ -1,0 +1,53 @@
+#include "pipeline/scene_scale_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "pipeline/auto_settings.hpp"
+
+namespace revisit {
+namespace {
+/// Points sampled per sampled scan: ten scans give 99% quantiles from ~10k ranges.
+constexpr std::size_t kSamplesPerScan = 1024;
+}  // namespace
+
+SceneScaleWatch::SceneScaleWatch(const PipelineConfig& config)
+    : active_(config.input.auto_settings && config.input.follow_scene_scale &&
+              config.explicit_keys.count("odometry.max_range") == 0),
+      max_range_(config.odometry.max_range) {}
+
+std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Scan& scan) {
+    if (!active_) return std::nullopt;
+    if (scans_++ % kSampleEvery == 0 && !scan.points.empty()) {
+        const std::size_t stride = std::max<std::size_t>(1, scan.points.size() / kSamplesPerScan);
+        for (std::size_t i = 0; i < scan.points.size(); i += stride) {
+            const double range = scan.points[i].cast<double>().norm();
+            if (range > 0.0 && std::isfinite(range)) ranges_.push_back(range);
+        }
+    }
+    if (scans_ % kWindowScans != 0) return std::nullopt;
+    if (ranges_.empty()) return std::nullopt;  // a window of empty scans says nothing about the scene
+    const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(ranges_.size() - 1));
+    std::nth_element(ranges_.begin(), ranges_.begin() + k, ranges_.end());
+    window_p99_.push_back(ranges_[static_cast<std::size_t>(k)]);
+    ranges_.clear();
+    if (window_p99_.size() > kWindowsKept) window_p99_.pop_front();
+    const double p99 = *std::max_element(window_p99_.begin(), window_p99_.end());
+    const double wanted = MaxRangeFor(p99);
+    if (std::max(wanted / max_range_, max_range_ / wanted) < kChangeFactor) return std::nullopt;
+    std::ostringstream reason;
+    reason << "99% of the points of the last " << window_p99_.size() * kWindowScans << " scans lie within "
+           << std::round(p99 * 10.0) / 10.0 << " m (x 1.5)";
+    SettingUpdate update{position + 1, "odometry.max_range", max_range_, wanted, reason.str()};
+    max_range_ = wanted;
+    return update;
+}
+
+std::string DescribeUpdate(const SettingUpdate& update) {
+    std::ostringstream out;
+    out << "scan " << update.scan << ": " << update.key << " " << update.from << " -> " << update.to << " (" << update.reason << ")";
+    return out.str();
+}
+
+}  // namespace revisit
