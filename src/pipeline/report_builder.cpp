@@ -22,6 +22,7 @@
 #include "pipeline/progress.hpp"
 #include "io/cloud_files.hpp"
 #include "pipeline/run_files.hpp"
+#include "pipeline/scene_scale_watch.hpp"
 #include "report/html_page.hpp"
 #include "report/report_writer.hpp"
 
@@ -147,6 +148,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
     }
     input.odometry = Timed(state, state.odometry);
     input.odometry_fallbacks = state.odometry_fallbacks;
+    for (const auto& update : state.setting_updates) input.setting_updates.push_back(DescribeUpdate(update));
     input.corrected = Timed(state, state.corrected);
     if (state.has_reference()) {
         // Ground truth lives in its own world frame: show it where the APE alignment puts it, so the

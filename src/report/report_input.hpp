@@ -84,6 +84,7 @@ struct ReportInput {
     TimedTrajectory corrected;
     TimedTrajectory reference;  ///< ground truth, empty when unknown
     std::vector<std::size_t> odometry_fallbacks;  ///< scans whose odometry pose is only a prediction
+    std::vector<std::string> setting_updates;     ///< settings that followed the data mid-run, one line each
 
     std::vector<ClosureEntry> closures;
     std::vector<int> map_ids;  ///< the run's local maps

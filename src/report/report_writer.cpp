@@ -255,6 +255,12 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
         index.Figure("odometry_fallbacks.svg", "odometry trajectory, motion predictions in red");
     }
 
+    if (!input.setting_updates.empty()) {
+        index.Heading("Settings that followed the data", 2, "settings");
+        index.Paragraph("The scene's scale changed as the sequence unfolded; the odometry followed it (run.json: setting_updates):");
+        for (const auto& line : input.setting_updates) index.Paragraph(line);
+    }
+
     index.Heading("Time per stage", 2, "timing");
     if (input.timings.empty()) index.Paragraph("Not recorded.");
     if (!input.timings.empty()) {

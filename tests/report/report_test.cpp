@@ -286,6 +286,18 @@ TEST(WriteReport, RunWithoutGroundTruthOrStoredMapsStillGivesValidPages) {
     EXPECT_LT(CountColor(top, palette::kReference), 50);  // only the legend would show it, and it is left out
 }
 
+TEST(WriteReport, SettingsThatFollowedTheDataAreListedOnlyWhenThereAreAny) {
+    test::TempDir plain, updated;
+    ReportInput input = SmallRun();
+    WriteReport(input, plain.path(), SmallPictures());
+    EXPECT_EQ(test::ReadFile(plain / "index.html").find("Settings that followed the data"), std::string::npos);
+    input.setting_updates = {"scan 200: odometry.max_range 30 -> 100 (99% of the points of the last 200 scans lie within 60.3 m (x 1.5))"};
+    WriteReport(input, updated.path(), SmallPictures());
+    const std::string index = test::ReadFile(updated / "index.html");
+    EXPECT_NE(index.find("Settings that followed the data"), std::string::npos);
+    EXPECT_NE(index.find("scan 200: odometry.max_range 30 -&gt; 100"), std::string::npos);
+}
+
 TEST(WriteClosurePage, RejectsAnUnknownClosure) {
     test::TempDir dir;
     EXPECT_THROW(WriteClosurePage(SmallRun(), 3, dir.path(), SmallPictures()), std::out_of_range);
