@@ -35,7 +35,9 @@ std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Sc
     if (window_p99_.size() > kWindowsKept) window_p99_.pop_front();
     const double p99 = *std::max_element(window_p99_.begin(), window_p99_.end());
     const double wanted = MaxRangeFor(p99);
-    if (std::max(wanted / max_range_, max_range_ / wanted) < kChangeFactor) return std::nullopt;
+    const bool widen = wanted >= kChangeFactor * max_range_;
+    const bool narrow = max_range_ >= kChangeFactor * wanted && window_p99_.size() == kWindowsKept;
+    if (!widen && !narrow) return std::nullopt;
     std::ostringstream reason;
     reason << "99% of the points of the last " << window_p99_.size() * kWindowScans << " scans lie within "
            << std::round(p99 * 10.0) / 10.0 << " m (x 1.5)";

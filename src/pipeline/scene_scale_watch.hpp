@@ -24,7 +24,7 @@ class SceneScaleWatch {
     static constexpr std::size_t kWindowScans = 50;
     static constexpr std::size_t kSampleEvery = 5;
     /// The range follows the windows' largest 99% range over this many windows: it widens at once
-    /// and narrows only after the scene stayed smaller for a while.
+    /// and narrows only after this many windows (also at the start: the first scans chose it).
     static constexpr std::size_t kWindowsKept = 4;
     /// Changed only when the rule moves it this much either way (no flapping).
     static constexpr double kChangeFactor = 1.5;

@@ -65,6 +65,18 @@ TEST(SceneScaleWatch, WidensAtOnceWhenTheSceneOpensAndNarrowsOnlyAfterItStaysSma
     EXPECT_DOUBLE_EQ(watch.max_range(), 30.0);
 }
 
+TEST(SceneScaleWatch, ARangeFromTheFirstScansIsNarrowedOnlyAfterFourWindows) {
+    // The first scans looked farther (90 m) than the next ones: a gap in the scene's first windows
+    // (passing a wall, a crowd around the sensor) must not narrow it.
+    SceneScaleWatch watch(AutoConfig(90.0));
+    std::size_t position = 0;
+    for (; position < 199; ++position) EXPECT_FALSE(watch.Add(position, Courtyard(12.0, position))) << position;
+    const auto narrowed = watch.Add(position, Courtyard(12.0, position));
+    ASSERT_TRUE(narrowed);
+    EXPECT_EQ(narrowed->scan, 200u);
+    EXPECT_DOUBLE_EQ(narrowed->to, 30.0);
+}
+
 TEST(SceneScaleWatch, AGivenRangeOrFixedSettingsAreNeverChanged) {
     PipelineConfig given = AutoConfig(30.0);
     given.explicit_keys.insert("odometry.max_range");
