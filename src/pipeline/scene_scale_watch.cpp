@@ -35,8 +35,8 @@ std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Sc
     if (window_p99_.size() > kWindowsKept) window_p99_.pop_front();
     const double p99 = *std::max_element(window_p99_.begin(), window_p99_.end());
     const double wanted = MaxRangeFor(p99);
-    const bool widen = wanted >= kChangeFactor * max_range_;
-    const bool narrow = max_range_ >= kChangeFactor * wanted && window_p99_.size() == kWindowsKept;
+    const bool widen = wanted >= kWidenFactor * max_range_;
+    const bool narrow = max_range_ >= kNarrowFactor * wanted && window_p99_.size() == kWindowsKept;
     if (!widen && !narrow) return std::nullopt;
     std::ostringstream reason;
     reason << "99% of the points of the last " << window_p99_.size() * kWindowScans << " scans lie within "

@@ -26,8 +26,10 @@ class SceneScaleWatch {
     /// The range follows the windows' largest 99% range over this many windows: it widens at once
     /// and narrows only after this many windows (also at the start: the first scans chose it).
     static constexpr std::size_t kWindowsKept = 4;
-    /// Changed only when the rule moves it this much either way (no flapping).
-    static constexpr double kChangeFactor = 1.5;
+    /// Widened when the rule asks for this much more, narrowed only for this much less (a walk's 99%
+    /// range moves between 30 and 60 m from one place to the next: no flapping between 60 and 90 m).
+    static constexpr double kWidenFactor = 1.5;
+    static constexpr double kNarrowFactor = 2.0;
 
     /// Active when `config` derives its settings from the data (input.auto_settings,
     /// input.follow_scene_scale) and odometry.max_range was not given explicitly.
