@@ -203,12 +203,20 @@ SimSummary RunSimulation(const SimConfig& config, const std::filesystem::path& o
         options.planar_max_range = config.sensor.max_range;
     }
     options.write_odometry = config.odometry.enabled;
+    // Neither written format has a field for per-point times (KITTI .bin: x y z intensity; the rawlog's
+    // point clouds: XYZI), and without them a distorted sweep cannot be undone (a rosette's firing order
+    // is not in its geometry): real recordings without times come deskewed, like the keyframes of
+    // ../shared/data/livox_handheld_walk. Written sweeps are therefore undistorted (src/sim/README.md:
+    // "The handheld walk"); SimulateScan keeps the distortion and its times for callers in memory.
+    SimConfig written = config;
+    written.sensor.motion_distortion = false;
     auto writer = CreateWriter(out, options, force);
-    const SimSummary summary = SimulateSequence(config, *writer, progress);
-    const std::string name = out.filename().string();
-    const bool rawlog = name.size() > 7 && (name.find(".rawlog") != std::string::npos);
-    const auto yaml = rawlog ? std::filesystem::path(out.string() + ".sim.yaml") : out / "sim.yaml";
-    WriteFileAtomically(yaml, SimConfigYaml(config, summary));
+    const SimSummary summary = SimulateSequence(written, *writer, progress);
+    const auto yaml = HasRawlogExtension(out) ? std::filesystem::path(out.string() + ".sim.yaml") : out / "sim.yaml";
+    std::string text = SimConfigYaml(written, summary);
+    if (config.sensor.motion_distortion)
+        text = "# the preset's motion distortion is off: the written format carries no per-point times\n" + text;
+    WriteFileAtomically(yaml, text);
     return summary;
 }
 

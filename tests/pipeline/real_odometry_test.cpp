@@ -2,32 +2,14 @@
 #include <gtest/gtest.h>
 
 #include "evaluation/trajectory_metrics.hpp"
-#include "io/reader.hpp"
-#include "odometry/lidar_odometry.hpp"
-#include "pipeline/auto_settings.hpp"
+#include "pipeline/odometry_run.hpp"
 #include "test_data.hpp"
 
 namespace revisit {
 namespace {
 
-struct OdometryRun {
-    Poses estimate, reference;
-    std::size_t fallbacks = 0;
-};
-
-OdometryRun RunOdometry(const std::filesystem::path& dataset) {
-    PipelineConfig config;
-    ConfigureFromData(config, dataset);
-    auto reader = OpenDataset(dataset, MakeReaderOptions(config.input));
-    LidarOdometry odometry(config.odometry);
-    OdometryRun run;
-    while (auto scan = reader->Next()) {
-        run.estimate.push_back(odometry.RegisterScan(*scan));
-        run.reference.push_back(scan->T_world_sensor.value_or(Eigen::Isometry3d::Identity()));
-    }
-    run.fallbacks = odometry.NumDegenerateFrames();
-    return run;
-}
+using test::OdometryRun;
+using test::RunOdometry;
 
 TEST(RealOdometry, LivoxHandheldWalkWithDerivedSettingsStaysWithinThirtyCentimetres) {
     // 266 keyframes of a swaying handheld Livox (70 deg field of view), 58.5 m around a courtyard.
