@@ -248,6 +248,21 @@ World GenerateCity(const CityConfig& config, std::uint64_t seed) {
                                ring[corners[(k + 1) % 4]], curved[sides[k]], config, rng, world);
         }
 
+    if (config.outer_frontage) {
+        std::mt19937 outer_rng(static_cast<std::uint32_t>(seed * 69069u + 7u));  // own stream: the layout above stays
+        const auto outer = [&](int a, int b, int edge) {  // buildings on the left of a -> b, i.e. outside
+            BuildBlockSide(graph.nodes[a], graph.nodes[b], ring[a], ring[b], curved[edge], config, outer_rng, world);
+        };
+        for (int i = 0; i + 1 < nx; ++i) {
+            outer(node(i + 1, 0), node(i, 0), h_edge[node(i, 0)]);                   // south side
+            outer(node(i, ny - 1), node(i + 1, ny - 1), h_edge[node(i, ny - 1)]);   // north side
+        }
+        for (int j = 0; j + 1 < ny; ++j) {
+            outer(node(0, j), node(0, j + 1), v_edge[node(0, j)]);                   // west side
+            outer(node(nx - 1, j + 1), node(nx - 1, j), v_edge[node(nx - 1, j)]);   // east side
+        }
+    }
+
     // Keep the remaining streets; clear them of buildings; furnish them.
     StreetGraph kept;
     kept.nodes = graph.nodes;

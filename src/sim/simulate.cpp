@@ -147,7 +147,7 @@ std::string SimConfigYaml(const SimConfig& config, const SimSummary& summary) {
             << ", block_size: " << config.city.block_size << ", road_half_width: " << config.city.road_half_width
             << ", min_building_height: " << config.city.min_building_height
             << ", max_building_height: " << config.city.max_building_height << ", moving_cars: " << config.city.moving_cars
-            << "}\n";
+            << (config.city.outer_frontage ? ", outer_frontage: true" : "") << "}\n";
     if (config.world == WorldKind::kHighway)
         out << "highway: {ring_radius: " << config.highway.ring_radius << ", road_half_width: " << config.highway.road_half_width
             << ", bank_probability: " << config.highway.bank_probability << ", bank_height: " << config.highway.bank_height
