@@ -38,6 +38,30 @@ std::size_t OccupiedVoxels(const std::vector<Eigen::Vector3f>& points, double vo
     return occupied.size();
 }
 
+/// Distinct elevation rings among `elevations` [deg] within [low, high]: runs of 0.1-degree bins that
+/// hold at least a tenth of the uniform density. 0 when most bins are occupied (no distinct rings).
+int CountRings(const std::vector<double>& elevations, double low, double high) {
+    constexpr double kBin = 0.1;  ///< [deg] finer than any spinning sensor's ring step (HDL-64: ~0.4)
+    const int bins = static_cast<int>(std::ceil((high - low) / kBin)) + 1;
+    if (bins < 2 || elevations.empty()) return 0;
+    std::vector<int> counts(static_cast<std::size_t>(bins), 0);
+    std::size_t inside = 0;
+    for (const double e : elevations) {
+        if (e < low || e > high) continue;
+        ++counts[static_cast<std::size_t>(std::min(bins - 1, static_cast<int>((e - low) / kBin)))];
+        ++inside;
+    }
+    const double min_count = 0.1 * static_cast<double>(inside) / bins;
+    int occupied = 0;
+    int rings = 0;
+    for (int b = 0; b < bins; ++b) {
+        const bool on = counts[static_cast<std::size_t>(b)] >= std::max(1.0, min_count);
+        occupied += on;
+        rings += on && (b == 0 || counts[static_cast<std::size_t>(b - 1)] < std::max(1.0, min_count));
+    }
+    return 2 * occupied > bins ? 0 : rings;
+}
+
 }  // namespace
 
 const std::vector<double>& VoxelCandidates() {
@@ -91,6 +115,10 @@ DataProfile DataProfiler::Profile() const {
     profile.range_max = ranges_.empty() ? 0.0 : *std::max_element(ranges_.begin(), ranges_.end());
     profile.horizontal_fov_deg = static_cast<double>(std::count(azimuth_bins_.begin(), azimuth_bins_.end(), true));
     profile.vertical_fov_deg = planar_ ? 0.0 : Quantile(elevations_, 0.99) - Quantile(elevations_, 0.01);
+    if (!planar_) {
+        profile.rings = CountRings(elevations_, Quantile(elevations_, 0.01), Quantile(elevations_, 0.99));
+        if (profile.rings > 1) profile.ring_spacing_deg = profile.vertical_fov_deg / (profile.rings - 1);
+    }
     std::vector<double> periods;
     for (std::size_t i = 1; i < timestamps_.size(); ++i) {
         const double dt = timestamps_[i] - timestamps_[i - 1];
@@ -114,6 +142,7 @@ std::vector<std::string> DataProfile::Describe() const {
                     " m, 99% " + Fixed(range_p99, 1) + " m, max " + Fixed(range_max, 1) + " m");
     std::string fov = "field of view: " + Fixed(horizontal_fov_deg, 0) + " deg horizontal";
     if (!planar) fov += ", " + Fixed(vertical_fov_deg, 1) + " deg vertical (1-99% of the points)";
+    if (!planar) fov += rings > 1 ? ", " + std::to_string(rings) + " rings " + Fixed(ring_spacing_deg, 2) + " deg apart" : ", no distinct rings";
     lines.push_back(fov);
     std::string timing = scan_period > 0.0 ? "scan period " + Fixed(scan_period, 3) + " s (" + Fixed(1.0 / scan_period, 1) + " Hz)"
                                            : "scan period unknown (no time stamps)";
