@@ -64,6 +64,7 @@ class DataProfiler {
     std::size_t scans_ = 0;
     std::vector<double> ranges_;      ///< sampled point ranges [m]
     std::vector<double> elevations_;  ///< sampled [deg]
+    std::vector<std::size_t> elevation_histogram_;  ///< every point of the first scans, 0.1 deg bins from -90 deg
     std::vector<bool> azimuth_bins_ = std::vector<bool>(360, false);
     std::vector<double> points_per_scan_;
     std::vector<double> timestamps_;
