@@ -22,6 +22,18 @@ void AddWallLines(double x, const std::vector<double>& heights, std::vector<Eige
         for (double y = -10.0; y <= 10.0; y += 0.25) points.emplace_back(x, y, z);
 }
 
+/// The ground (z = -1.8) and side walls (y = +-8) of a 40 m street, sampled every `step` [m] from
+/// `offset` [m] past the corner.
+void AddGroundAndSideWalls(double offset, double step, std::vector<Eigen::Vector3d>& points) {
+    for (double x = -20.0 + offset; x <= 20.0; x += step) {
+        for (double y = -8.0 + offset; y <= 8.0; y += step) points.emplace_back(x, y, -1.8);
+        for (double z = -1.8 + offset; z <= 6.0; z += step) {
+            points.emplace_back(x, 8.0, z);
+            points.emplace_back(x, -8.0, z);
+        }
+    }
+}
+
 /// A street 16 m wide: a densely sampled ground (z = -1.8) and side walls (y = +-8); the walls ahead
 /// (x = 15) and behind (x = -15) only as the sparse lines of rings 2 degrees apart.
 struct Street {
@@ -32,25 +44,13 @@ struct Street {
 Street MakeStreet() {
     Street street;
     auto& map = street.map_points;
-    for (double x = -20.0; x <= 20.0; x += 0.3)
-        for (double y = -8.0; y <= 8.0; y += 0.3) map.emplace_back(x, y, -1.8);
-    for (double x = -20.0; x <= 20.0; x += 0.3)
-        for (double z = -1.8; z <= 6.0; z += 0.3) {
-            map.emplace_back(x, 8.0, z);
-            map.emplace_back(x, -8.0, z);
-        }
+    AddGroundAndSideWalls(0.0, 0.3, map);
     // Earlier scans saw the upward rings higher on the wall ahead and lower on the wall behind.
     AddWallLines(15.0, {3.1, 3.4, 3.7, 4.0}, map);
     AddWallLines(-15.0, {1.4, 1.7, 2.0, 2.3}, map);
     // The current scan: the same ground and side walls, its ring lines between the map's.
     auto& scan = street.scan_points;
-    for (double x = -19.85; x <= 19.9; x += 0.9)
-        for (double y = -7.85; y <= 7.9; y += 0.9) scan.emplace_back(x, y, -1.8);
-    for (double x = -19.85; x <= 19.9; x += 0.9)
-        for (double z = -1.65; z <= 5.9; z += 0.9) {
-            scan.emplace_back(x, 8.0, z);
-            scan.emplace_back(x, -8.0, z);
-        }
+    AddGroundAndSideWalls(0.15, 0.9, scan);
     AddWallLines(15.0, {2.6}, scan);
     AddWallLines(-15.0, {2.8}, scan);
     return street;
