@@ -55,7 +55,10 @@ std::string Describe(double value) {
 LidarOdometry::LidarOdometry(const OdometryConfig& config)
     : config_(Validated(config)),
       map_(config.VoxelSize(), config.max_points_per_voxel),
-      threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {}
+      threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {
+    // 2D scans have no planes in the map (a wall is a line): they stay point-to-point.
+    map_.EnableNormals(config.residual == IcpResidual::kPointToPlane && !config.planar);
+}
 
 void LidarOdometry::SetMaxRange(double max_range) {
     OdometryConfig changed = config_;
@@ -157,6 +160,7 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         params.convergence = config_.convergence;
         params.min_correspondences = config_.min_correspondences;
         params.planar = config_.planar;
+        params.point_to_plane = config_.residual == IcpResidual::kPointToPlane && !config_.planar;
         IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
         // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
         // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
@@ -184,6 +188,8 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         stats_.agreement = source.empty() ? 0.0 : std::min(1.0, static_cast<double>(agreeing) / static_cast<double>(source.size()));
         stats_.iterations = icp.iterations;
         stats_.correspondences = icp.correspondences;
+        stats_.plane_correspondences = icp.plane_correspondences;
+        stats_.planes_only = icp.planes_only;
         // A correction is judged by its translation: the rotation part of the model error grows with
         // max_range, and a swaying handheld sensor turns 15 deg between keyframes legitimately.
         const double correction = (T_predicted.inverse() * icp.T_world_sensor).translation().norm();

@@ -23,6 +23,8 @@ struct OdometryFrameStats {
     std::size_t map_points = 0;          ///< after the 0.5 v downsampling (what enters the map)
     std::size_t source_points = 0;       ///< after the 1.5 v downsampling (what is registered)
     std::size_t correspondences = 0;     ///< in the last ICP iteration
+    std::size_t plane_correspondences = 0;  ///< of those, point-to-plane ones (odometry.residual)
+    bool planes_only = false;            ///< the point-to-plane correspondences were used alone
     double agreement = 0.0;              ///< share of the registered points within one voxel of the map
     int iterations = 0;
     double sigma = 0.0;                  ///< [m] adaptive threshold used for this frame

@@ -9,6 +9,14 @@ enum class IcpKernel {
     kLater,  ///< k = sigma (later code)
 };
 
+/// What an ICP correspondence measures (METHOD.md section 1 names point-to-point, KISS-ICP's choice).
+enum class IcpResidual {
+    kPointToPoint,  ///< the full vector to the nearest map point (KISS-ICP)
+    /// Its component along the normal of the nearest point's map voxel where that voxel's points span a
+    /// plane, else point-to-point. Sparse rings on walls (16-beam sensors) otherwise pull in pitch.
+    kPointToPlane,
+};
+
 struct OdometryConfig {
     // Range and voxels.
     double max_range = 100.0;        ///< [m] points farther away are dropped; also the map radius
@@ -22,6 +30,7 @@ struct OdometryConfig {
     /// Paper-era by default (METHOD.md). On the simulated demo city each kernel stalls once: sigma/3
     /// over the first ~100 scans from rest, sigma around scan 2886 (see the issue notes).
     IcpKernel kernel = IcpKernel::kPaper;
+    IcpResidual residual = IcpResidual::kPointToPoint;  ///< settings from the data: point-to-plane for sparse rings
     int max_iterations = 500;        ///< Gauss-Newton iterations per frame
     double convergence = 1e-4;       ///< stop when |dx| of an update is below this [m, rad]
     int min_correspondences = 20;    ///< fewer: the frame is degenerate, keep the prediction

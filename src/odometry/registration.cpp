@@ -1,6 +1,7 @@
 #include "odometry/registration.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -11,6 +12,13 @@ namespace revisit {
 namespace {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// Point-to-plane correspondences alone are used when every translation direction carries at least
+/// this share of their weighted normals (the smallest eigenvalue of sum w n n^T / sum w; 1/3 when the
+/// normals point every way equally): then the planes pin the frame down, and the non-planar
+/// correspondences, whose point-to-point pull is biased where rings are sparse, are left out.
+/// Measured smallest shares: real KITTI 0.07-0.08, a simulated 16-beam city 0.026-0.19.
+constexpr double kMinPlaneDirectionShare = 0.02;
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
     Eigen::Matrix3d m;
@@ -27,7 +35,11 @@ struct Moments {
     Eigen::Matrix3d wppt = Eigen::Matrix3d::Zero();       ///< sum w p p^T
     Eigen::Vector3d wr = Eigen::Vector3d::Zero();         ///< sum w r
     Eigen::Vector3d wpxr = Eigen::Vector3d::Zero();       ///< sum w p x r
+    // Point-to-plane correspondences (residual e = n^T r, Jacobian row j = [n; p x n]): summed directly.
+    Matrix6d wjjt = Matrix6d::Zero();                     ///< sum w j j^T
+    Vector6d wje = Vector6d::Zero();                      ///< sum w j e
     std::size_t count = 0;
+    std::size_t plane_count = 0;
 
     Moments& operator+=(const Moments& other) {
         w += other.w;
@@ -35,7 +47,10 @@ struct Moments {
         wppt += other.wppt;
         wr += other.wr;
         wpxr += other.wpxr;
+        wjjt += other.wjjt;
+        wje += other.wje;
         count += other.count;
+        plane_count += other.plane_count;
         return *this;
     }
 };
@@ -55,6 +70,19 @@ Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMa
                 if (nearest == nullptr) continue;
                 const Eigen::Vector3d r = p_world - *nearest;
                 const Eigen::Vector3d p = p_world - centre;  // linearize about the sensor: better conditioned
+                ++sums.count;
+                const Eigen::Vector3d* normal = params.point_to_plane ? map.NormalOf(nearest) : nullptr;
+                if (normal != nullptr) {
+                    const double e = normal->dot(r);
+                    const double denominator = params.kernel + e * e;
+                    const double w = k2 / (denominator * denominator);
+                    Vector6d j;
+                    j << *normal, p.cross(*normal);
+                    sums.wjjt.noalias() += (w * j) * j.transpose();
+                    sums.wje += (w * e) * j;
+                    ++sums.plane_count;
+                    continue;
+                }
                 const double denominator = params.kernel + r.squaredNorm();
                 const double w = k2 / (denominator * denominator);
                 sums.w += w;
@@ -62,21 +90,38 @@ Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMa
                 sums.wppt.noalias() += (w * p) * p.transpose();
                 sums.wr += w * r;
                 sums.wpxr += w * p.cross(r);
-                ++sums.count;
             }
             return sums;
         },
         [](Moments a, const Moments& b) { return a += b; });
 }
 
-/// J^T J and J^T r from the moments (J = [I, -hat(p)], tangent order [rho; phi]).
-void AssembleNormalEquations(const Moments& m, Matrix6d& JTJ, Vector6d& JTr) {
+/// Whether the point-to-plane correspondences alone constrain every translation direction.
+bool PlanesSuffice(const Moments& m) {
+    const Eigen::Matrix3d normals = m.wjjt.topLeftCorner<3, 3>();
+    const double total = normals.trace();
+    if (!(total > 0.0)) return false;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(normals / total, Eigen::EigenvaluesOnly);
+    return solver.eigenvalues()[0] >= kMinPlaneDirectionShare;
+}
+
+/// J^T J and J^T r from the moments (J = [I, -hat(p)], tangent order [rho; phi]); only the
+/// point-to-plane sums when `planes_only`.
+void AssembleNormalEquations(const Moments& m, bool planes_only, Matrix6d& JTJ, Vector6d& JTr) {
+    if (planes_only) {
+        JTJ = m.wjjt;
+        JTr = m.wje;
+        return;
+    }
     JTJ.topLeftCorner<3, 3>() = m.w * Eigen::Matrix3d::Identity();
     JTJ.topRightCorner<3, 3>() = -Hat(m.wp);
     JTJ.bottomLeftCorner<3, 3>() = Hat(m.wp);
     JTJ.bottomRightCorner<3, 3>() = m.wppt.trace() * Eigen::Matrix3d::Identity() - m.wppt;
     JTr.head<3>() = m.wr;
     JTr.tail<3>() = m.wpxr;
+    JTJ += m.wjjt;
+    JTr += m.wje;
 }
 
 /// Gauss-Newton step; planar mode solves only for (x, y, yaw) = tangent indices 0, 1, 5.
@@ -124,13 +169,16 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
     for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
         const Eigen::Isometry3d T = Translation(centre) * T_centred;
         const Moments moments = Accumulate(points_in_sensor, map, T, centre, params, neighbourhoods);
-        result.correspondences = moments.count;
+        // Decided once per frame, from the initial guess: the iterations then minimize one cost.
+        if (iteration == 0) result.planes_only = params.point_to_plane && PlanesSuffice(moments);
+        result.correspondences = result.planes_only ? moments.plane_count : moments.count;
+        result.plane_correspondences = moments.plane_count;
         result.iterations = iteration + 1;
-        if (moments.count < static_cast<std::size_t>(std::max(params.min_correspondences, 1))) {
+        if (result.correspondences < static_cast<std::size_t>(std::max(params.min_correspondences, 1))) {
             result.valid = false;
             break;
         }
-        AssembleNormalEquations(moments, JTJ, JTr);
+        AssembleNormalEquations(moments, result.planes_only, JTJ, JTr);
         const Vector6d dx = SolveStep(JTJ, JTr, params.planar);
         if (!dx.allFinite()) {
             result.valid = false;

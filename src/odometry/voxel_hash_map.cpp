@@ -1,5 +1,6 @@
 #include "odometry/voxel_hash_map.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -28,6 +29,31 @@ std::array<Voxel, 27> MakeOffsets() {
     return offsets;
 }
 const std::array<Voxel, 27> kOffsets = MakeOffsets();
+
+// When a voxel's points span a plane (scale-free, so the same for any voxel size and sensor):
+constexpr int kMinPlanePoints = 5;         ///< fewer points give no reliable normal
+constexpr double kMaxThicknessRatio = 0.1;  ///< smallest / middle covariance eigenvalue: thin
+/// Middle / largest eigenvalue: two-dimensional. A single ring line on a wall is thin in both other
+/// directions (its range noise and nothing), which alone would pass as a plane with a normal along
+/// the wall: this excludes it.
+constexpr double kMinWidthRatio = 0.05;
+
+/// The normal of the plane through `points` when they span one (see the constants above).
+bool FitPlaneNormal(const Eigen::Vector3d* begin, const Eigen::Vector3d* end, Eigen::Vector3d& normal) {
+    const auto n = end - begin;
+    if (n < kMinPlanePoints) return false;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d* p = begin; p != end; ++p) mean += *p;
+    mean /= static_cast<double>(n);
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3d* p = begin; p != end; ++p) covariance.noalias() += (*p - mean) * (*p - mean).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(covariance);
+    const Eigen::Vector3d& lambda = solver.eigenvalues();  // ascending
+    if (!(lambda[0] <= kMaxThicknessRatio * lambda[1]) || !(lambda[1] >= kMinWidthRatio * lambda[2])) return false;
+    normal = solver.eigenvectors().col(0).normalized();
+    return normal.allFinite();
+}
 
 }  // namespace
 
@@ -59,6 +85,7 @@ void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
     const std::size_t num_shards = NumShards(n);
     if (num_shards == 1) {  // small batches (2D scans, sparse sensors): the plain loop, no tasks
         for (const auto& point : points) AddPoint(point);
+        UpdateNormals();
         return;
     }
     pending_.resize(n);
@@ -82,6 +109,35 @@ void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
     });
     for (std::size_t i = 0; i < n; ++i)
         if (pending_[i]) AddPoint(points[i], point_voxels_[i]);
+    UpdateNormals();
+}
+
+void VoxelHashMap::UpdateNormals() {
+    if (!normals_enabled_) return;
+    // New slots start with count 0: computed below. Each slot on its own: the same at any thread count.
+    normals_.resize(voxels_.size(), Eigen::Vector3d::Zero());
+    normal_ok_.resize(voxels_.size(), 0);
+    normal_counts_.resize(voxels_.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels_.size(), 4096), [&](const auto& range) {
+        for (std::size_t slot = range.begin(); slot != range.end(); ++slot) {
+            if (normal_counts_[slot] == counts_[slot]) continue;
+            normal_counts_[slot] = counts_[slot];
+            const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
+            normal_ok_[slot] = FitPlaneNormal(begin, begin + counts_[slot], normals_[slot]);
+            if (normal_ok_[slot]) continue;
+            // Too few points of its own (far from the sensor, sparse rings: often one ring's line), or
+            // not a plane: the plane of its 27-voxel neighbourhood, if that is one.
+            static thread_local std::vector<Eigen::Vector3d> gathered;
+            gathered.clear();
+            for (const Voxel& offset : kOffsets) {
+                const auto it = index_.find(Voxel(voxels_[slot] + offset));
+                if (it == index_.end()) continue;
+                const Eigen::Vector3d* b = points_.data() + std::size_t(it->second) * max_points_;
+                gathered.insert(gathered.end(), b, b + counts_[it->second]);
+            }
+            normal_ok_[slot] = FitPlaneNormal(gathered.data(), gathered.data() + gathered.size(), normals_[slot]);
+        }
+    });
 }
 
 void VoxelHashMap::AddPoint(const Eigen::Vector3d& point) { AddPoint(point, VoxelOfInverse(point, inv_voxel_size_)); }
@@ -106,6 +162,13 @@ void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_dista
         for (std::size_t slot = range.begin(); slot != range.end(); ++slot)
             far_[slot] = (points_[slot * max_points_] - origin).squaredNorm() > max_distance2;
     });
+    // Normals follow their voxels (a stale cache, e.g. enabled after points were added, is rebuilt).
+    const bool has_normals = normals_enabled_ && normals_.size() == voxels_.size();
+    if (!has_normals) {
+        normals_.clear();
+        normal_ok_.clear();
+        normal_counts_.clear();
+    }
     std::size_t slot = 0;
     while (slot < voxels_.size()) {
         if (!far_[slot]) {
@@ -121,6 +184,16 @@ void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_dista
             far_[slot] = far_[last];
             std::copy_n(points_.begin() + last * max_points_, counts_[last], points_.begin() + slot * max_points_);
             index_[voxels_[slot]] = static_cast<std::uint32_t>(slot);
+            if (has_normals) {
+                normals_[slot] = normals_[last];
+                normal_ok_[slot] = normal_ok_[last];
+                normal_counts_[slot] = normal_counts_[last];
+            }
+        }
+        if (has_normals) {
+            normals_.pop_back();
+            normal_ok_.pop_back();
+            normal_counts_.pop_back();
         }
         voxels_.pop_back();
         counts_.pop_back();
@@ -134,6 +207,9 @@ void VoxelHashMap::Clear() {
     voxels_.clear();
     counts_.clear();
     points_.clear();
+    normals_.clear();
+    normal_ok_.clear();
+    normal_counts_.clear();
 }
 
 template <typename SlotOf>

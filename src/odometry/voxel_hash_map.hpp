@@ -50,6 +50,17 @@ class VoxelHashMap {
     /// FindNearest with `cache` for this query's neighbourhood: the same result, fewer hash lookups.
     const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance, Neighbourhood& cache) const;
 
+    /// Keep a plane normal per voxel (point-to-plane ICP): after each AddPoints, the voxels whose
+    /// points changed get their normal recomputed from their own points; the others keep theirs.
+    void EnableNormals(bool enabled) { normals_enabled_ = enabled; }
+    /// The unit normal of the voxel holding `point` (a pointer FindNearest returned), or nullptr when
+    /// its points do not span a plane (too few, collinear, or a volume): the caller falls back to
+    /// point-to-point. Valid until the map changes.
+    const Eigen::Vector3d* NormalOf(const Eigen::Vector3d* point) const {
+        const std::size_t slot = static_cast<std::size_t>(point - points_.data()) / max_points_;
+        return slot < normal_ok_.size() && normal_ok_[slot] ? &normals_[slot] : nullptr;
+    }
+
     bool Empty() const { return voxels_.empty(); }
     std::size_t NumVoxels() const { return voxels_.size(); }
     std::size_t NumPoints() const;
@@ -65,6 +76,8 @@ class VoxelHashMap {
     void AddPoint(const Eigen::Vector3d& point, const Voxel& voxel);
     /// Adds `point` to the voxel in `slot` unless it is full or the point is too close to one of its points.
     bool TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point);
+    /// Recomputes the normal of every voxel whose point count changed since its last computation.
+    void UpdateNormals();
 
     double voxel_size_;
     double inv_voxel_size_;
@@ -74,6 +87,10 @@ class VoxelHashMap {
     std::vector<Voxel> voxels_;                              ///< slot -> voxel
     std::vector<std::uint16_t> counts_;                      ///< slot -> number of points
     std::vector<Eigen::Vector3d> points_;                    ///< slot * max_points_ + k
+    bool normals_enabled_ = false;
+    std::vector<Eigen::Vector3d> normals_;       ///< slot -> unit plane normal (when normal_ok_)
+    std::vector<std::uint8_t> normal_ok_;        ///< slot -> the voxel's points span a plane
+    std::vector<std::uint16_t> normal_counts_;   ///< slot -> point count the normal was computed from
     // Buffers of AddPoints and RemoveFarFrom, kept between frames (no allocation per frame).
     std::vector<Voxel> point_voxels_;
     std::vector<std::uint32_t> point_shards_;

@@ -23,6 +23,8 @@ constexpr double kContradictionFactor = 3.0;
 /// a 3D scan constrains six degrees of freedom from a few surfaces, a 2D scan three from walls.
 constexpr double kMinSourcePoints3D = 1000.0;
 constexpr double kMinSourcePoints2D = 150.0;
+/// [deg] rings at least this far apart in elevation get point-to-plane registration (VLP-16: 2 deg).
+constexpr double kSparseRingSpacingDeg = 1.0;
 
 std::string Number(double value, int digits = 2) {
     std::ostringstream out;
@@ -194,6 +196,14 @@ std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optio
                        "a tenth of a map voxel (KISS-ICP: 0.1 m for 1 m voxels)"});
     choices.push_back({"odometry.deskew", p.has_point_times ? 1.0 : 0.0, {},
                        p.has_point_times ? "the scans carry per-point times" : "no per-point times"});
+    // Rings a degree or more apart leave walls sampled in sparse lines whose point-to-point pull is a
+    // pitch (src/sim/README.md, "Sparse and narrow sensors"); finer rings (HDL-64: 0.4 deg) and
+    // non-repetitive patterns keep KISS-ICP's point-to-point (point-to-plane loses the Livox walk).
+    const bool sparse_rings = p.ring_spacing_deg >= kSparseRingSpacingDeg;
+    choices.push_back({"odometry.residual", sparse_rings ? 1.0 : 0.0, sparse_rings ? "point_to_plane" : "point_to_point",
+                       p.rings > 1 ? std::to_string(p.rings) + " rings " + Number(p.ring_spacing_deg) + " deg apart" +
+                                         (sparse_rings ? ": sparse on walls" : "")
+                                   : std::string(p.planar ? "a 2D laser" : "no distinct rings")});
     ChooseClosureSettings(p, v, max_range, given_map_length, choices);
     return choices;
 }

@@ -23,6 +23,9 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.min_motion_th", &o.min_motion_th, "m", "a frame updates the threshold only above this motion (KISS-ICP: 0.1)", Range{0, 10});
     s.AddEnum("odometry.kernel", &o.kernel, {{"paper", IcpKernel::kPaper}, {"later", IcpKernel::kLater}},
               "Geman-McClure scale: paper-era sigma/3, later sigma (METHOD.md 1)");
+    s.AddEnum("odometry.residual", &o.residual,
+              {{"point_to_plane", IcpResidual::kPointToPlane}, {"point_to_point", IcpResidual::kPointToPoint}},
+              "point_to_plane: along planar map voxels' normals, planes alone when they fix every translation (data: rings >= 1 deg apart); KISS-ICP's point_to_point");
     s.Add("odometry.max_iterations", &o.max_iterations, "", "ICP iterations per frame (KISS-ICP: 500)", Range{1, 10000});
     s.Add("odometry.convergence", &o.convergence, "", "stop when the update norm is below (KISS-ICP: 1e-4)", Range{1e-12, 1});
     s.Add("odometry.min_correspondences", &o.min_correspondences, "", "fewer: keep the motion prediction", Range{3, 1000000});

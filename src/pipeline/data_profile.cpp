@@ -28,6 +28,9 @@ std::string Fixed(double value, int digits) {
     return out.str();
 }
 
+/// [deg] elevation histogram bin for finding rings: finer than any spinning sensor's ring step (HDL-64: ~0.4).
+constexpr double kElevationBinDeg = 0.1;
+
 /// Scans whose downsampled size is counted (a full pass over their points per candidate).
 constexpr std::size_t kVoxelCountScans = 5;
 
@@ -36,6 +39,27 @@ std::size_t OccupiedVoxels(const std::vector<Eigen::Vector3f>& points, double vo
     occupied.reserve(points.size() / 4);
     for (const auto& p : points) occupied.insert(VoxelOf(p.cast<double>(), voxel));
     return occupied.size();
+}
+
+/// Distinct elevation rings in a histogram of elevations (bins of kElevationBinDeg from -90 deg), within
+/// [low, high] [deg]: runs of bins that hold at least a tenth of the uniform density. 0 when most bins
+/// are occupied (no distinct rings: a rosette or another non-repetitive pattern).
+int CountRings(const std::vector<std::size_t>& histogram, double low, double high) {
+    const auto first = static_cast<std::size_t>(std::clamp((low + 90.0) / kElevationBinDeg, 0.0, double(histogram.size() - 1)));
+    const auto last = static_cast<std::size_t>(std::clamp((high + 90.0) / kElevationBinDeg, 0.0, double(histogram.size() - 1)));
+    if (last <= first) return 0;
+    const std::size_t bins = last - first + 1;
+    std::size_t inside = 0;
+    for (std::size_t b = first; b <= last; ++b) inside += histogram[b];
+    const double min_count = std::max(1.0, 0.1 * static_cast<double>(inside) / static_cast<double>(bins));
+    std::size_t occupied = 0;
+    int rings = 0;
+    for (std::size_t b = first; b <= last; ++b) {
+        const bool on = static_cast<double>(histogram[b]) >= min_count;
+        occupied += on;
+        rings += on && (b == first || static_cast<double>(histogram[b - 1]) < min_count);
+    }
+    return 2 * occupied > bins ? 0 : rings;
 }
 
 }  // namespace
@@ -57,6 +81,14 @@ bool DataProfiler::Add(const Scan& scan) {
         source_points_.resize(VoxelCandidates().size());
         for (std::size_t k = 0; k < VoxelCandidates().size(); ++k) {
             source_points_[k].push_back(static_cast<double>(OccupiedVoxels(scan.points, 1.5 * VoxelCandidates()[k])));
+        }
+        // Rings from every point: a strided sample can alias with the beam order (every 4th of 64 rings).
+        elevation_histogram_.resize(static_cast<std::size_t>(180.0 / kElevationBinDeg) + 1, 0);
+        for (const auto& point : scan.points) {
+            const double range = point.cast<double>().norm();
+            if (!(range > 0.0)) continue;
+            const double elevation = std::asin(std::clamp(double(point.z()) / range, -1.0, 1.0)) * 180.0 / M_PI;
+            ++elevation_histogram_[static_cast<std::size_t>((elevation + 90.0) / kElevationBinDeg)];
         }
         const GroundAlignment ground = AlignGround(scan.points, GroundAlignmentConfig{});
         if (ground.aligned) {
@@ -91,6 +123,10 @@ DataProfile DataProfiler::Profile() const {
     profile.range_max = ranges_.empty() ? 0.0 : *std::max_element(ranges_.begin(), ranges_.end());
     profile.horizontal_fov_deg = static_cast<double>(std::count(azimuth_bins_.begin(), azimuth_bins_.end(), true));
     profile.vertical_fov_deg = planar_ ? 0.0 : Quantile(elevations_, 0.99) - Quantile(elevations_, 0.01);
+    if (!planar_) {
+        profile.rings = CountRings(elevation_histogram_, Quantile(elevations_, 0.01), Quantile(elevations_, 0.99));
+        if (profile.rings > 1) profile.ring_spacing_deg = profile.vertical_fov_deg / (profile.rings - 1);
+    }
     std::vector<double> periods;
     for (std::size_t i = 1; i < timestamps_.size(); ++i) {
         const double dt = timestamps_[i] - timestamps_[i - 1];
@@ -114,6 +150,7 @@ std::vector<std::string> DataProfile::Describe() const {
                     " m, 99% " + Fixed(range_p99, 1) + " m, max " + Fixed(range_max, 1) + " m");
     std::string fov = "field of view: " + Fixed(horizontal_fov_deg, 0) + " deg horizontal";
     if (!planar) fov += ", " + Fixed(vertical_fov_deg, 1) + " deg vertical (1-99% of the points)";
+    if (!planar) fov += rings > 1 ? ", " + std::to_string(rings) + " rings " + Fixed(ring_spacing_deg, 2) + " deg apart" : ", no distinct rings";
     lines.push_back(fov);
     std::string timing = scan_period > 0.0 ? "scan period " + Fixed(scan_period, 3) + " s (" + Fixed(1.0 / scan_period, 1) + " Hz)"
                                            : "scan period unknown (no time stamps)";

@@ -22,6 +22,10 @@ struct DataProfile {
     double range_max = 0.0;         ///< [m]
     double horizontal_fov_deg = 0.0;  ///< [deg] azimuth covered (1-degree bins with points)
     double vertical_fov_deg = 0.0;    ///< [deg] elevation span, 1st to 99th percentile (0 for 2D lasers)
+    /// [deg] mean elevation step between the sensor's rings (vertical FOV / rings), 0 when the points do
+    /// not lie on distinct rings (a rosette or other non-repetitive pattern, a 2D laser).
+    double ring_spacing_deg = 0.0;
+    int rings = 0;                    ///< distinct elevation rings seen (0: none)
     double scan_period = 0.0;       ///< [s] median time between scans (0: unknown)
     bool has_point_times = false;   ///< per-point times (deskewing possible)
     bool has_odometry_prior = false;
@@ -60,6 +64,7 @@ class DataProfiler {
     std::size_t scans_ = 0;
     std::vector<double> ranges_;      ///< sampled point ranges [m]
     std::vector<double> elevations_;  ///< sampled [deg]
+    std::vector<std::size_t> elevation_histogram_;  ///< every point of the first scans, 0.1 deg bins from -90 deg
     std::vector<bool> azimuth_bins_ = std::vector<bool>(360, false);
     std::vector<double> points_per_scan_;
     std::vector<double> timestamps_;

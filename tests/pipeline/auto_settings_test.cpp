@@ -2,9 +2,12 @@
 /// explicit values win; a 2D laser's wrong stated aperture is measured and corrected.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/reader.hpp"
 #include "io/writer.hpp"
 #include "pipeline/auto_settings.hpp"
+#include "pipeline/data_profile.hpp"
 #include "sim/presets.hpp"
 #include "sim/simulate.hpp"
 #include "test_data.hpp"
@@ -74,6 +77,53 @@ TEST(AutoSettings, AWalkACityDriveAndAnIndoorLaserGetDifferentDocumentedSettings
     EXPECT_TRUE(walk.detector.align_ground);
     EXPECT_DOUBLE_EQ(indoor.graph_noise.odometry_rotation_per_m, 0.002);
     EXPECT_DOUBLE_EQ(indoor.detector.density.resolution, indoor.odometry.voxel_size);
+}
+
+/// A scan of a sensor at the centre of a cylinder of radius 20 m: `beams` beams per azimuth step of
+/// 0.2 deg (azimuth-major, as a spinning sensor fires), beam k at `elevation_deg(azimuth, k)`.
+template <typename Elevation>
+Scan RingScan(int beams, const Elevation& elevation_deg, std::size_t index) {
+    Scan scan;
+    scan.index = index;
+    scan.timestamp = 0.1 * static_cast<double>(index);
+    for (double azimuth = 0.0; azimuth < 360.0; azimuth += 0.2) {
+        for (int k = 0; k < beams; ++k) {
+            const double a = azimuth * M_PI / 180.0, e = elevation_deg(azimuth, k) * M_PI / 180.0;
+            scan.points.emplace_back(Eigen::Vector3f(20.0f * std::cos(a), 20.0f * std::sin(a), 20.0f * std::tan(e)));
+        }
+    }
+    return scan;
+}
+
+std::string ChosenText(const std::vector<SettingChoice>& choices, const std::string& key) {
+    for (const auto& c : choices) {
+        if (c.key == key) return c.text + " <- " + c.reason;
+    }
+    return "no choice for " + key;
+}
+
+TEST(AutoSettings, RingsADegreeOrMoreApartGetPointToPlaneRegistration) {
+    auto profile = [](int beams, const auto& elevation) {
+        DataProfiler profiler(3);
+        for (std::size_t i = 0; i < 3; ++i) profiler.Add(RingScan(beams, elevation, i));
+        return profiler.Profile();
+    };
+    const DataProfile sparse = profile(16, [](double, int k) { return -15.0 + 2.0 * k; });  // VLP-16
+    // HDL-64 (64 beams per azimuth: a sample of every 28th point would see only every 4th ring).
+    const DataProfile dense = profile(64, [](double, int k) { return -24.8 + 0.42 * k; });
+    // A rosette: each beam sweeps the elevations as it turns.
+    const DataProfile none = profile(6, [](double azimuth, int k) { return -35.0 + 70.0 * std::fmod(0.618034 * k + 0.0371 * azimuth, 1.0); });
+    EXPECT_EQ(sparse.rings, 16);
+    EXPECT_NEAR(sparse.ring_spacing_deg, 2.0, 0.1);
+    EXPECT_GE(dense.rings, 60);  // the outermost rings may fall outside the 1-99% elevation span
+    EXPECT_NEAR(dense.ring_spacing_deg, 0.42, 0.02);
+    EXPECT_EQ(none.rings, 0);
+    EXPECT_EQ(ChosenText(ChooseSettings(sparse, std::nullopt, std::nullopt), "odometry.residual"),
+              "point_to_plane <- 16 rings 2 deg apart: sparse on walls");
+    EXPECT_EQ(ChosenText(ChooseSettings(dense, std::nullopt, std::nullopt), "odometry.residual"),
+              "point_to_point <- " + std::to_string(dense.rings) + " rings 0.42 deg apart");
+    EXPECT_EQ(ChosenText(ChooseSettings(none, std::nullopt, std::nullopt), "odometry.residual"),
+              "point_to_point <- no distinct rings");
 }
 
 TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
