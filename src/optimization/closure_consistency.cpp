@@ -222,10 +222,10 @@ std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adj
 void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry) {
     const std::size_t v = closures_.size();
     odometry_chi2_.push_back(OdometryChi2(closure, odometry, noise_, config_));
-    const bool fits_odometry = odometry_chi2_.back() <= config_.chi2_threshold;
+    const bool fits_odometry = odometry_chi2_.back() <= config_.odometry_chi2_threshold;
     std::vector<char> row(v + 1, 1);
     for (std::size_t k = 0; k < v; ++k) {
-        row[k] = fits_odometry && odometry_chi2_[k] <= config_.chi2_threshold &&
+        row[k] = fits_odometry && odometry_chi2_[k] <= config_.odometry_chi2_threshold &&
                  CycleChi2(closures_[k], closure, odometry, noise_, config_) <= config_.chi2_threshold;
         consistent_[k].push_back(row[k]);
     }

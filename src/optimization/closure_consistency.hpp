@@ -14,6 +14,9 @@ namespace revisit {
 struct ClosureConsistencyConfig {
     bool enabled = true;                      ///< check closures pairwise before the pose graph
     double chi2_threshold = 16.81;            ///< cycle chi^2 bound: 99% quantile of chi^2 with 6 degrees of freedom
+    /// A closure checked against the odometry alone is rejected without another closure to confirm the
+    /// verdict: held to a 1e-4 false rejection (99.99% quantile, 6 dof) instead of the pairs' 1e-2.
+    double odometry_chi2_threshold = 27.86;
     double closure_sigma_translation = 0.5;   ///< [m] error of one verified closure (what counts as a true one)
     double closure_sigma_rotation_deg = 2.0;  ///< [deg]
     int exact_max_steps = 20000;              ///< branch-and-bound budget; past it the best set found so far is kept
@@ -72,7 +75,7 @@ class ClosureConsistency {
     /// Adds a closure and updates the set; the odometry must hold both of its nodes (and those of every
     /// earlier closure). Cost: one check against the odometry, one cycle per earlier closure, and a
     /// clique search among the new closure's consistent partners only when it disagrees with the
-    /// current set. A closure the odometry contradicts (`OdometryChi2` above the threshold) agrees
+    /// current set. A closure the odometry contradicts (`OdometryChi2` above `odometry_chi2_threshold`) agrees
     /// with nothing.
     void Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry);
     /// One flag per added closure: in the maximum consistent set (ties: the larger sum of scores, then
@@ -84,7 +87,7 @@ class ClosureConsistency {
     std::size_t size() const { return closures_.size(); }
     /// The closure's chi^2 against the odometry alone (`OdometryChi2`).
     double OdometryChi2Of(std::size_t k) const { return odometry_chi2_[k]; }
-    bool ContradictsOdometry(std::size_t k) const { return config_.enabled && odometry_chi2_[k] > config_.chi2_threshold; }
+    bool ContradictsOdometry(std::size_t k) const { return config_.enabled && odometry_chi2_[k] > config_.odometry_chi2_threshold; }
     bool Consistent(std::size_t a, std::size_t b) const { return consistent_[a][b] != 0; }
 
   private:

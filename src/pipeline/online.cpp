@@ -208,7 +208,7 @@ std::string ClosurePipeline::OdometryContradiction(const Closure& closure, std::
     const double travel = std::abs(maps_[std::size_t(closure.query_id)].travel_start - maps_[std::size_t(closure.ref_id)].travel_start);
     char text[160];
     std::snprintf(text, sizeof(text), "contradicts the odometry (PCM: chi^2 %.1f > %.1f over %.0f m of travel)",
-                  consistency_.OdometryChi2Of(k), config_.consistency.chi2_threshold, travel);
+                  consistency_.OdometryChi2Of(k), config_.consistency.odometry_chi2_threshold, travel);
     return text;
 }
 
