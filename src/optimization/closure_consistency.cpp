@@ -221,7 +221,7 @@ std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adj
 
 void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry) {
     const std::size_t v = closures_.size();
-    odometry_chi2_.push_back(OdometryChi2(closure, odometry, noise_, config_));
+    odometry_chi2_.push_back(odometry.one_chain ? OdometryChi2(closure, odometry, noise_, config_) : 0.0);
     const bool fits_odometry = odometry_chi2_.back() <= config_.odometry_chi2_threshold;
     std::vector<char> row(v + 1, 1);
     for (std::size_t k = 0; k < v; ++k) {

@@ -38,6 +38,9 @@ struct ConsistencyOdometry {
     const Poses* T_world_node = nullptr;
     const std::vector<double>* travel = nullptr;
     const std::vector<Eigen::Vector3d>* position_integral = nullptr;  ///< [m^2] sum of position x travel
+    /// The nodes form one odometry chain, so a closure can be checked against the odometry alone; false
+    /// for the nodes of two sessions side by side (only cycles with one leg in each are defined).
+    bool one_chain = true;
 };
 
 /// Extends `integral` to the last node of `T_world_node` (trapezoids between consecutive nodes).
