@@ -103,29 +103,115 @@ double Travel(const ConsistencyOdometry& odometry, int from, int to) {
     return std::abs((*odometry.travel)[std::size_t(to)] - (*odometry.travel)[std::size_t(from)]);
 }
 
+using Matrix63d = Eigen::Matrix<double, 6, 3>;
+
+Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
+    Eigen::Matrix3d m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+}
+
+/// Adjoint of T for right perturbations [translation; rotation]: T Exp(xi) = Exp(Ad xi) T.
+Matrix6d Adjoint(const Eigen::Isometry3d& T) {
+    Matrix6d ad = Matrix6d::Zero();
+    ad.topLeftCorner<3, 3>() = T.linear();
+    ad.topRightCorner<3, 3>() = Skew(T.translation()) * T.linear();
+    ad.bottomRightCorner<3, 3>() = T.linear();
+    return ad;
+}
+
+/// The leg's end error per radian of rotation drift about each axis of its end frame, as a right
+/// perturbation of the leg [translation; rotation]: a drift accumulated evenly along the path turns
+/// the end about the path's mean position, so the end moves by angle x (end - mean).
+Matrix63d DriftColumns(const ConsistencyOdometry& odometry, int from, int to) {
+    const Eigen::Isometry3d& T_world_to = (*odometry.T_world_node)[std::size_t(to)];
+    const Eigen::Vector3d& p_from = (*odometry.T_world_node)[std::size_t(from)].translation();
+    Eigen::Vector3d mean = 0.5 * (p_from + T_world_to.translation());
+    const double travel = (*odometry.travel)[std::size_t(to)] - (*odometry.travel)[std::size_t(from)];
+    if (odometry.position_integral != nullptr && std::abs(travel) > 1e-9)
+        mean = ((*odometry.position_integral)[std::size_t(to)] - (*odometry.position_integral)[std::size_t(from)]) / travel;
+    // Rotating the end by w about the mean moves it by w x (end - mean): in the end frame, -[d]x w.
+    const Eigen::Vector3d d = T_world_to.linear().transpose() * (T_world_to.translation() - mean);
+    Matrix63d columns;
+    columns.topRows<3>() = -Skew(d);
+    columns.bottomRows<3>() = Eigen::Matrix3d::Identity();
+    return columns;
+}
+
+/// [m^2] Variance of the leg end's position that its rotation drift leaves unexplained by the drift
+/// angle at its end: a drift that wanders (a random walk, not an even rate) moves the end by
+/// sigma_r x travel / sqrt(12) beyond what the end's angle shows (the conditional of the random walk).
+double WanderVariance(double sigma_r, double travel) {
+    const double sigma = sigma_r * travel / std::sqrt(12.0);
+    return sigma * sigma;
+}
+
+/// [translation; rotation vector] of a pose near identity (the cycle's residual).
+Eigen::Matrix<double, 6, 1> Residual(const Eigen::Isometry3d& cycle) {
+    const Eigen::AngleAxisd rotation(cycle.linear());
+    Eigen::Matrix<double, 6, 1> e;
+    e << cycle.translation(), rotation.angle() * rotation.axis();
+    return e;
+}
+
 }  // namespace
+
+void AppendPositionIntegral(const Poses& T_world_node, const std::vector<double>& travel, std::vector<Eigen::Vector3d>& integral) {
+    for (std::size_t i = integral.size(); i < T_world_node.size(); ++i) {
+        if (i == 0) {
+            integral.push_back(Eigen::Vector3d::Zero());
+            continue;
+        }
+        const Eigen::Vector3d mid = 0.5 * (T_world_node[i - 1].translation() + T_world_node[i].translation());
+        integral.push_back(integral[i - 1] + mid * (travel[i] - travel[i - 1]));
+    }
+}
 
 double CycleChi2(const ConsistencyClosure& a, const ConsistencyClosure& b, const ConsistencyOdometry& odometry,
                  const OdometryNoise& noise, const ClosureConsistencyConfig& config) {
-    const Eigen::Isometry3d cycle = a.T_query_ref * Odometry(odometry, a.ref_node, b.ref_node) * b.T_query_ref.inverse() *
-                                    Odometry(odometry, b.query_node, a.query_node);
-    double var_t = 2.0 * config.closure_sigma_translation * config.closure_sigma_translation;
+    // cycle = A * leg_ref * C with A = T_qa_ra, leg_ref = odom(ra -> rb), C = T_qb_rb^-1 * leg_query and
+    // leg_query = odom(qb -> qa). A right perturbation xi of leg_ref moves the cycle by Ad(C^-1) xi,
+    // one of leg_query by xi itself (it is the last factor).
+    const Eigen::Isometry3d leg_query = Odometry(odometry, b.query_node, a.query_node);
+    const Eigen::Isometry3d C = b.T_query_ref.inverse() * leg_query;
+    const Eigen::Isometry3d cycle = a.T_query_ref * Odometry(odometry, a.ref_node, b.ref_node) * C;
+
     const double sigma_closure_rotation = config.closure_sigma_rotation_deg * M_PI / 180.0;
-    double var_r = 2.0 * sigma_closure_rotation * sigma_closure_rotation;
-    const std::pair<int, int> legs[] = {{a.ref_node, b.ref_node}, {b.query_node, a.query_node}};
-    for (const auto& [from, to] : legs) {
-        const double travel = Travel(odometry, from, to);
+    double var_t = 2.0 * config.closure_sigma_translation * config.closure_sigma_translation;
+    Matrix6d covariance = Matrix6d::Zero();
+    covariance.bottomRightCorner<3, 3>().diagonal().setConstant(2.0 * sigma_closure_rotation * sigma_closure_rotation);
+    const struct {
+        int from, to;
+        Matrix6d into_cycle;
+    } legs[] = {{a.ref_node, b.ref_node, Adjoint(C.inverse())}, {b.query_node, a.query_node, Matrix6d::Identity()}};
+    for (const auto& leg : legs) {
+        const double travel = Travel(odometry, leg.from, leg.to);
         const double sigma_t = std::max(noise.min_translation, noise.translation_per_m * travel);
         const double sigma_r = std::max(noise.min_rotation, noise.rotation_per_m * travel);
-        // Heading drift along the leg also moves its end: sigma_r times the mean distance from the path
-        // to its end, travel / 2 on a straight leg (rotation_per_m * travel^2 / 2). Where heading drifts
-        // faster than position (2D lasers indoors) this dominates the cycle's translation error.
-        const double swing = sigma_r * travel / 2.0;
-        var_t += sigma_t * sigma_t + swing * swing;
-        var_r += sigma_r * sigma_r;
+        var_t += sigma_t * sigma_t + WanderVariance(sigma_r, travel);  // isotropic: the same in any frame
+        const Matrix63d drift = leg.into_cycle * DriftColumns(odometry, leg.from, leg.to);
+        covariance += sigma_r * sigma_r * drift * drift.transpose();
     }
-    const double angle = Eigen::AngleAxisd(cycle.linear()).angle();
-    return cycle.translation().squaredNorm() / var_t + angle * angle / var_r;
+    covariance.topLeftCorner<3, 3>().diagonal().array() += var_t;
+    const Eigen::Matrix<double, 6, 1> e = Residual(cycle);
+    return e.dot(covariance.ldlt().solve(e));
+}
+
+double OdometryChi2(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry, const OdometryNoise& noise,
+                    const ClosureConsistencyConfig& config) {
+    // The cycle through one closure and one leg: T_query_ref * odom(ref -> query); one closure's sigma.
+    const Eigen::Isometry3d cycle = closure.T_query_ref * Odometry(odometry, closure.ref_node, closure.query_node);
+    const double sigma_closure_rotation = config.closure_sigma_rotation_deg * M_PI / 180.0;
+    const double travel = Travel(odometry, closure.ref_node, closure.query_node);
+    const double sigma_t = std::max(noise.min_translation, noise.translation_per_m * travel);
+    const double sigma_r = std::max(noise.min_rotation, noise.rotation_per_m * travel);
+    const Matrix63d drift = DriftColumns(odometry, closure.ref_node, closure.query_node);
+    Matrix6d covariance = sigma_r * sigma_r * drift * drift.transpose();
+    covariance.topLeftCorner<3, 3>().diagonal().array() +=
+        config.closure_sigma_translation * config.closure_sigma_translation + sigma_t * sigma_t + WanderVariance(sigma_r, travel);
+    covariance.bottomRightCorner<3, 3>().diagonal().array() += sigma_closure_rotation * sigma_closure_rotation;
+    const Eigen::Matrix<double, 6, 1> e = Residual(cycle);
+    return e.dot(covariance.ldlt().solve(e));
 }
 
 std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adjacency, const std::vector<double>& weight,
@@ -135,14 +221,18 @@ std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adj
 
 void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry) {
     const std::size_t v = closures_.size();
+    odometry_chi2_.push_back(odometry.one_chain ? OdometryChi2(closure, odometry, noise_, config_) : 0.0);
+    const bool fits_odometry = odometry_chi2_.back() <= config_.odometry_chi2_threshold;
     std::vector<char> row(v + 1, 1);
     for (std::size_t k = 0; k < v; ++k) {
-        row[k] = CycleChi2(closures_[k], closure, odometry, noise_, config_) <= config_.chi2_threshold;
+        row[k] = fits_odometry && odometry_chi2_[k] <= config_.odometry_chi2_threshold &&
+                 CycleChi2(closures_[k], closure, odometry, noise_, config_) <= config_.chi2_threshold;
         consistent_[k].push_back(row[k]);
     }
     closures_.push_back(closure);
     consistent_.push_back(row);
     in_set_.push_back(0);
+    if (!fits_odometry) return;  // agrees with nothing: never in the set
 
     // Incremental maximum clique: a new vertex grows the largest clique by at most one, and only with
     // its own neighbours. If it agrees with the whole current set, the set plus it is maximum;
@@ -152,7 +242,7 @@ void ClosureConsistency::Add(const ConsistencyClosure& closure, const Consistenc
     if (agrees_with_set) {
         in_set_[v] = 1;
         ++set_size_;
-        set_weight_ += closure.score;
+        set_weight_ += TieWeight(v);
         return;
     }
     std::vector<std::size_t> neighbours;
@@ -162,11 +252,11 @@ void ClosureConsistency::Add(const ConsistencyClosure& closure, const Consistenc
     std::vector<std::vector<char>> adjacency(neighbours.size(), std::vector<char>(neighbours.size(), 0));
     std::vector<double> weight(neighbours.size());
     for (std::size_t a = 0; a < neighbours.size(); ++a) {
-        weight[a] = closures_[neighbours[a]].score;
+        weight[a] = TieWeight(neighbours[a]);
         for (std::size_t b = 0; b < neighbours.size(); ++b) adjacency[a][b] = consistent_[neighbours[a]][neighbours[b]];
     }
     const auto clique = MaximumClique(adjacency, weight, config_.exact_max_steps);
-    double clique_weight = closure.score;
+    double clique_weight = TieWeight(v);
     for (std::size_t a : clique) clique_weight += weight[a];
     if (clique.size() + 1 < set_size_ || (clique.size() + 1 == set_size_ && clique_weight <= set_weight_)) return;
     std::fill(in_set_.begin(), in_set_.end(), 0);
@@ -174,6 +264,12 @@ void ClosureConsistency::Add(const ConsistencyClosure& closure, const Consistenc
     in_set_[v] = 1;
     set_size_ = clique.size() + 1;
     set_weight_ = clique_weight;
+}
+
+double ClosureConsistency::TieWeight(std::size_t k) const {
+    // The score decides between sets of equal size; between equal scores (a few inliers each) the set
+    // that agrees better with the odometry: the fraction stays below one inlier.
+    return closures_[k].score + 1.0 / (1.0 + odometry_chi2_[k]);
 }
 
 std::vector<char> ClosureConsistency::ConsistentSet() const {

@@ -14,6 +14,9 @@ namespace revisit {
 struct ClosureConsistencyConfig {
     bool enabled = true;                      ///< check closures pairwise before the pose graph
     double chi2_threshold = 16.81;            ///< cycle chi^2 bound: 99% quantile of chi^2 with 6 degrees of freedom
+    /// A closure checked against the odometry alone is rejected without another closure to confirm the
+    /// verdict: held to a 1e-4 false rejection (99.99% quantile, 6 dof) instead of the pairs' 1e-2.
+    double odometry_chi2_threshold = 27.86;
     double closure_sigma_translation = 0.5;   ///< [m] error of one verified closure (what counts as a true one)
     double closure_sigma_rotation_deg = 2.0;  ///< [deg]
     int exact_max_steps = 20000;              ///< branch-and-bound budget; past it the best set found so far is kept
@@ -27,19 +30,39 @@ struct ConsistencyClosure {
     double score = 0.0;  ///< breaks ties between sets of equal size (e.g. RANSAC inliers)
 };
 
-/// The odometry the cycles go through: node poses (odometry, never optimized) and the travelled
-/// distance [m] at each node.
+/// The odometry the cycles go through: node poses (odometry, never optimized), the travelled
+/// distance [m] at each node and, optionally, the integral of the node positions over travel
+/// (`AppendPositionIntegral`), which gives each leg's mean position; without it a leg's mean
+/// position is taken halfway along its chord.
 struct ConsistencyOdometry {
     const Poses* T_world_node = nullptr;
     const std::vector<double>* travel = nullptr;
+    const std::vector<Eigen::Vector3d>* position_integral = nullptr;  ///< [m^2] sum of position x travel
+    /// The nodes form one odometry chain, so a closure can be checked against the odometry alone; false
+    /// for the nodes of two sessions side by side (only cycles with one leg in each are defined).
+    bool one_chain = true;
 };
 
-/// chi^2 of the cycle T_qa_ra * odom(ra -> rb) * T_qb_rb^-1 * odom(qb -> qa). Odometry sigma grows
-/// linearly with the travel along each of the two odometry legs (as the pose graph's odometry edges),
-/// plus the position error the leg's heading drift causes (rotation sigma x travel / 2); each closure
-/// adds the config's closure sigma. Translation and rotation errors are taken as isotropic.
+/// Extends `integral` to the last node of `T_world_node` (trapezoids between consecutive nodes).
+void AppendPositionIntegral(const Poses& T_world_node, const std::vector<double>& travel, std::vector<Eigen::Vector3d>& integral);
+
+/// chi^2 (6 dof) of the cycle T_qa_ra * odom(ra -> rb) * T_qb_rb^-1 * odom(qb -> qa). Along each of
+/// the two odometry legs the translation sigma grows linearly with the travel (as the pose graph's
+/// odometry edges) and so does the rotation sigma; a rotation drift also moves the leg's end, by the
+/// drift angle times the distance from the leg's mean position to its end, and that displacement is
+/// tied to the rotation it comes with (the same drift), not independent of it: a cycle whose rotation
+/// closes cannot hide metres of translation in its legs' heading drift. A drift that wanders rather
+/// than runs at an even rate adds sigma_r x travel / sqrt(12) of independent position error (a random
+/// walk's position given its end angle). Each closure adds the config's closure sigma (isotropic).
 double CycleChi2(const ConsistencyClosure& a, const ConsistencyClosure& b, const ConsistencyOdometry& odometry,
                  const OdometryNoise& noise, const ClosureConsistencyConfig& config);
+
+/// chi^2 (6 dof) of one closure against the odometry alone: the cycle T_query_ref * odom(ref -> query)
+/// over one leg, under the same drift model. A closure the odometry contradicts where its drift bound
+/// says it must agree (a short loop, a turned or shifted place of a repetitive world) is dropped
+/// before any pairing: pairs of such closures can agree with each other.
+double OdometryChi2(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry, const OdometryNoise& noise,
+                    const ClosureConsistencyConfig& config);
 
 /// The largest clique of an undirected graph (adjacency[i][j] != 0: i and j agree), ties broken by
 /// the larger sum of `weight`. Exact branch and bound, started from a greedy clique and bounded by
@@ -53,23 +76,33 @@ class ClosureConsistency {
     ClosureConsistency(const ClosureConsistencyConfig& config, const OdometryNoise& noise) : config_(config), noise_(noise) {}
 
     /// Adds a closure and updates the set; the odometry must hold both of its nodes (and those of every
-    /// earlier closure). Cost: one cycle per earlier closure, and a clique search among the new
-    /// closure's consistent partners only when it disagrees with the current set.
+    /// earlier closure). Cost: one check against the odometry, one cycle per earlier closure, and a
+    /// clique search among the new closure's consistent partners only when it disagrees with the
+    /// current set. A closure the odometry contradicts (`OdometryChi2` above `odometry_chi2_threshold`) agrees
+    /// with nothing.
     void Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry);
-    /// One flag per added closure: in the maximum consistent set (ties: the larger sum of scores), kept
+    /// One flag per added closure: in the maximum consistent set (ties: the larger sum of scores, then
+    /// the closer agreement with the odometry alone), kept
     /// incrementally as closures arrive. A single closure is kept (nothing to check it against); with
     /// the check disabled every closure is kept.
     std::vector<char> ConsistentSet() const;
 
     std::size_t size() const { return closures_.size(); }
+    /// The closure's chi^2 against the odometry alone (`OdometryChi2`).
+    double OdometryChi2Of(std::size_t k) const { return odometry_chi2_[k]; }
+    bool ContradictsOdometry(std::size_t k) const { return config_.enabled && odometry_chi2_[k] > config_.odometry_chi2_threshold; }
     bool Consistent(std::size_t a, std::size_t b) const { return consistent_[a][b] != 0; }
 
   private:
+    /// Ties between sets of equal size: the larger sum of scores, then the closer agreement with the odometry.
+    double TieWeight(std::size_t k) const;
+
     ClosureConsistencyConfig config_;
     OdometryNoise noise_;
     std::vector<ConsistencyClosure> closures_;
     std::vector<std::vector<char>> consistent_;
     std::vector<char> in_set_;  ///< the maximum consistent set, kept up to date by Add
+    std::vector<double> odometry_chi2_;
     std::size_t set_size_ = 0;
     double set_weight_ = 0.0;
 };

@@ -57,7 +57,7 @@ void CheckConsistency(const std::vector<SessionChain>& sessions, const std::vect
             const auto& c = closures[k];
             ConsistencyClosure turned{c.query_node + offset, c.ref_node, c.T_query_ref, c.score};
             if (a != b && c.query_session == a) turned = {c.ref_node + offset, c.query_node, c.T_query_ref.inverse(), c.score};
-            consistency.Add(turned, {&nodes, &travel});
+            consistency.Add(turned, {&nodes, &travel, nullptr, a == b});
         }
         const auto keep = consistency.ConsistentSet();
         int kept = 0;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <tsl/robin_set.h>
 
@@ -67,9 +68,27 @@ void Validate(const RefinementConfig& config) {
         throw ConfigError("refinement: max_iterations and max_solver_iterations must be >= 1");
 }
 
+/// True when every point of both maps lies at one height along `up` (a 2D laser's maps): a wall is
+/// then a line, whose 3D neighbourhood has two zero eigenvalues, and the smallest one's eigenvector
+/// may be the vertical, a normal that constrains nothing in the plane.
+bool AllAtOneHeight(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, const Eigen::Vector3d& up) {
+    if (up.squaredNorm() == 0.0) return false;
+    const Eigen::Vector3d unit_up = up.normalized();
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const auto* points : {&a, &b})
+        for (const auto& p : *points) {
+            low = std::min(low, unit_up.dot(p));
+            high = std::max(high, unit_up.dot(p));
+        }
+    return high - low < 1e-6;
+}
+
 /// Planes of the query map: PCA normal of each point's neighbourhood, kept only where the
-/// neighbourhood is flat (surface variation, Pauly et al. 2002) and populated enough.
-std::vector<Plane> EstimatePlanes(const std::vector<Eigen::Vector3d>& points, const RefinementConfig& config) {
+/// neighbourhood is flat (surface variation, Pauly et al. 2002) and populated enough. With
+/// `in_plane_up` nonzero (a planar map) the PCA is taken within the plane orthogonal to it: the normal
+/// of a wall line, and its variation among the two in-plane directions.
+std::vector<Plane> EstimatePlanes(const std::vector<Eigen::Vector3d>& points, const RefinementConfig& config,
+                                  const Eigen::Vector3d& in_plane_up) {
     const PointGrid grid(points, config.normal_radius);
     std::vector<std::optional<Plane>> planes(points.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto& range) {
@@ -86,9 +105,13 @@ std::vector<Plane> EstimatePlanes(const std::vector<Eigen::Vector3d>& points, co
             });
             if (count < config.min_normal_neighbours) continue;
             const Eigen::Vector3d mean = sum_offset / count;
-            const Eigen::Matrix3d covariance = sum_outer / count - mean * mean.transpose();
+            Eigen::Matrix3d covariance = sum_outer / count - mean * mean.transpose();
+            // Planar: the vertical gets the largest eigenvalue, so the smallest is the in-plane normal.
+            const double vertical_weight = covariance.trace() + 1.0;
+            if (in_plane_up.squaredNorm() > 0.0) covariance += vertical_weight * in_plane_up * in_plane_up.transpose();
             const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-            const double sum = solver.eigenvalues().sum();
+            double sum = solver.eigenvalues().sum();
+            if (in_plane_up.squaredNorm() > 0.0) sum -= vertical_weight;
             if (!(sum > 0.0) || solver.eigenvalues()(0) / sum > config.max_surface_variation) continue;
             planes[i] = Plane{points[i], solver.eigenvectors().col(0)};
         }
@@ -238,7 +261,9 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     }
     const auto source = VoxelDownsample(ref_points_in_ref, config.voxel_size);
     const auto query_down = VoxelDownsample(query_points_in_query, config.voxel_size);
-    const auto planes = EstimatePlanes(query_down, config);
+    const bool planar = AllAtOneHeight(source, query_down, up_in_query);
+    const Eigen::Vector3d in_plane_up = planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero();
+    const auto planes = EstimatePlanes(query_down, config, in_plane_up);
     std::vector<Eigen::Vector3d> plane_points;
     plane_points.reserve(planes.size());
     for (const auto& plane : planes) plane_points.push_back(plane.point);

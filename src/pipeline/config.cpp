@@ -148,6 +148,9 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
           "keep only the largest set of pairwise-consistent verified closures before the pose graph (PCM)");
     s.Add("consistency.chi2_threshold", &pcm.chi2_threshold, "",
           "two closures agree when their cycle with the odometry has chi^2 below this (99% of chi^2, 6 dof: 16.81)", Range{0.01, 1e9});
+    s.Add("consistency.odometry_chi2_threshold", &pcm.odometry_chi2_threshold, "",
+          "a closure alone is dropped when its cycle with the odometry has chi^2 above this (99.99% of chi^2, 6 dof: 27.86)",
+          Range{0.01, 1e9});
     s.Add("consistency.closure_sigma_translation", &pcm.closure_sigma_translation, "m", "error of one verified closure", Range{1e-4, 100});
     s.Add("consistency.closure_sigma_rotation_deg", &pcm.closure_sigma_rotation_deg, "deg", "same, rotation", Range{1e-4, 180});
     s.Add("consistency.exact_max_steps", &pcm.exact_max_steps, "",

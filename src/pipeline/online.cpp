@@ -138,6 +138,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     maps_.push_back(summary);
     nodes_.push_back(map.T_world_map);
     node_travel_.push_back(map.travel_start);
+    AppendPositionIntegral(nodes_, node_travel_, node_position_integral_);
     corrected_nodes_.push_back(corrected_nodes_.empty() ? map.T_world_map
                                                         : corrected_nodes_.back() * nodes_[nodes_.size() - 2].inverse() *
                                                               map.T_world_map);
@@ -197,10 +198,18 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
         verified_edges_.push_back(edge);
         verified_closure_.push_back(closures_.size());
         consistency_.Add({closure.query_id, closure.ref_id, record.refinement.T_query_ref, double(closure.num_inliers)},
-                         {&nodes_, &node_travel_});
+                         {&nodes_, &node_travel_, &node_position_integral_});
         ++accepted_since_optimization_;
     }
     return record;
+}
+
+std::string ClosurePipeline::OdometryContradiction(const Closure& closure, std::size_t k) const {
+    const double travel = std::abs(maps_[std::size_t(closure.query_id)].travel_start - maps_[std::size_t(closure.ref_id)].travel_start);
+    char text[160];
+    std::snprintf(text, sizeof(text), "contradicts the odometry (PCM: chi^2 %.1f > %.1f over %.0f m of travel)",
+                  consistency_.OdometryChi2Of(k), config_.consistency.odometry_chi2_threshold, travel);
+    return text;
 }
 
 void ClosurePipeline::ApplyConsistency() {
@@ -212,7 +221,8 @@ void ClosurePipeline::ApplyConsistency() {
         ClosureRecord& record = closures_[verified_closure_[k]];
         record.accepted = keep[k] != 0;
         if (!record.accepted) {
-            record.reason = "inconsistent with other closures (PCM)";
+            record.reason = consistency_.ContradictsOdometry(k) ? OdometryContradiction(record.closure, k)
+                                                                 : "inconsistent with other closures (PCM)";
             record.graph_weight = 0.0;
             continue;
         }

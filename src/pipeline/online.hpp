@@ -60,6 +60,8 @@ class ClosurePipeline {
   private:
     PipelineUpdate ProcessMap(const LocalMap& map);
     ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points);
+    /// Why verified closure k (of the consistency check) was dropped against the odometry alone.
+    std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
     void ApplyConsistency();
     void Optimize(bool final);
@@ -75,6 +77,7 @@ class ClosurePipeline {
     std::vector<MapComparison> comparisons_;
     Poses nodes_;            ///< odometry map origins
     std::vector<double> node_travel_;  ///< [m] travel at each map origin
+    std::vector<Eigen::Vector3d> node_position_integral_;  ///< the consistency check's leg means (AppendPositionIntegral)
     ClosureConsistency consistency_;
     std::vector<PoseGraphEdge> verified_edges_;      ///< one per closure that passed 3D verification
     std::vector<std::size_t> verified_closure_;      ///< closures_ index of each verified edge

@@ -1,6 +1,7 @@
 #include "report/report_writer.hpp"
 
 #include "render/map_pair_view.hpp"
+#include "render/map_top_view.hpp"
 #include "render/overview.hpp"
 #include "report/html_page.hpp"
 #include "report/index_tables.hpp"
@@ -188,6 +189,10 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
         ++stats.images;
         index.Figure(name, std::string("overview, ") + caption, name, 640);
     }
+    // The corrected map alone, one pixel per cell: single or doubled walls show here.
+    WritePng(report_dir / "map_top.png", RenderMapTopView(overview.map_points));
+    ++stats.images;
+    index.Figure("map_top.png", "corrected map, top view (every point of the global map at the corrected poses)", "map_top.png", 640);
 
     index.Heading("Accepted closures by ground-truth error", 2, "errors");
     AddErrorRanking(index, input, plan, 5);

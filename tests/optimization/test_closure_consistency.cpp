@@ -90,6 +90,55 @@ TEST(ClosureConsistency, TwoMutuallyConsistentWrongClosuresAgainstManyRightOnesA
     EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 1, 1, 1, 1, 1, 0, 0}));
 }
 
+TEST(ClosureConsistency, ClosuresTheOdometryContradictsAreDroppedEvenWhenTheyAgreeWithEachOther) {
+    // A corridor of identical rooms seen from its other end: two queries match the same place turned by
+    // 180 deg, agree with each other, and have more inliers than the two true closures. A cycle cannot
+    // tell the pairs apart (2 against 2); the odometry can: over 260 m of travel it turns by
+    // 3e-4 rad/m x 260 m = 4.5 deg (1 sigma), not 180.
+    const TwoLaps laps;
+    const Eigen::Isometry3d turned = PoseFromXYZRPY(4.0, 0.0, 0.0, 0.0, 0.0, M_PI);
+    std::vector<ConsistencyClosure> closures = {laps.True(47, 7), laps.True(52, 12)};
+    for (int q : {66, 67}) {
+        auto wrong = laps.True(q, 26);
+        wrong.T_query_ref = wrong.T_query_ref * turned;
+        wrong.score = 200.0;
+        closures.push_back(wrong);
+    }
+    ClosureConsistency consistency(ClosureConsistencyConfig{}, OdometryNoise{});
+    for (const auto& c : closures) consistency.Add(c, laps.Odometry());
+    EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 1, 0, 0}));
+    EXPECT_FALSE(consistency.ContradictsOdometry(0));
+    EXPECT_FALSE(consistency.ContradictsOdometry(1));
+    EXPECT_TRUE(consistency.ContradictsOdometry(2));
+    EXPECT_TRUE(consistency.ContradictsOdometry(3));
+    EXPECT_GT(consistency.OdometryChi2Of(2), 100.0);
+    EXPECT_LT(CycleChi2(closures[2], closures[3], laps.Odometry(), OdometryNoise{}, ClosureConsistencyConfig{}), 16.81);
+}
+
+TEST(ClosureConsistency, AShiftTheHeadingDriftWouldHaveTurnedIsInconsistent) {
+    // Two closures from one query to two places 80 m apart on a straight side. The second is shifted
+    // 18 m sideways (two rooms of a repetitive corridor) with its rotation right. Under a 2D laser's
+    // loose heading sigma (2e-3 rad/m: 9 deg over the leg) an even drift that moved the leg's end 18 m
+    // sideways would have turned it by 18 m / 40 m = 26 deg, and the cycle closes in rotation; what a
+    // wandering drift adds is 3.7 m (1 sigma). Taken as independent of the rotation (sigma_r x 40 m =
+    // 6.4 m of sideways swing) the shift would pass.
+    const TwoLaps laps;
+    OdometryNoise loose;
+    loose.rotation_per_m = 2e-3;
+    const auto a = laps.True(41, 1);
+    auto shifted = laps.True(41, 9);
+    shifted.T_query_ref = shifted.T_query_ref * PoseFromXYZRPY(0.0, 18.0, 0.0, 0.0, 0.0, 0.0);
+    EXPECT_GT(CycleChi2(a, shifted, laps.Odometry(), loose, ClosureConsistencyConfig{}), 16.81);
+    EXPECT_LT(CycleChi2(a, laps.True(41, 9), laps.Odometry(), loose, ClosureConsistencyConfig{}), 1.0);
+    // The means of the legs from the nodes' positions give the same verdicts.
+    std::vector<Eigen::Vector3d> integral;
+    AppendPositionIntegral(laps.odometry, laps.travel, integral);
+    ConsistencyOdometry with_means = laps.Odometry();
+    with_means.position_integral = &integral;
+    EXPECT_GT(CycleChi2(a, shifted, with_means, loose, ClosureConsistencyConfig{}), 16.81);
+    EXPECT_LT(CycleChi2(a, laps.True(41, 9), with_means, loose, ClosureConsistencyConfig{}), 1.0);
+}
+
 TEST(ClosureConsistency, ASingleClosureIsKeptAndDisablingKeepsAll) {
     const TwoLaps laps;
     auto wrong = laps.True(50, 10);

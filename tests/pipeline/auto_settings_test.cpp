@@ -152,6 +152,31 @@ TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
     EXPECT_FALSE(off.odometry.planar);
 }
 
+TEST(AutoSettings, ASparse2DLaserKeepsTheSceneScaleVoxel) {
+    // intel.rawlog's first scans: 166 beams, 1.41 m median range, and fewer than the 150 points a
+    // 2D scan should keep at any voxel: the floor cannot bind, the scale rule (not rounded up) decides.
+    DataProfile sparse;
+    sparse.scans = 10;
+    sparse.planar = true;
+    sparse.points_per_scan = 166;
+    sparse.range_p50 = 1.41;
+    sparse.range_p95 = 7.6;
+    sparse.range_p99 = 9.0;
+    sparse.voxel_candidates = VoxelCandidates();
+    sparse.source_points = {87, 62, 45, 36, 30, 26, 20, 17, 14, 11, 9};
+    auto voxel = [](const std::vector<SettingChoice>& choices) {
+        for (const auto& c : choices)
+            if (c.key == "odometry.voxel_size") return c.value;
+        return -1.0;
+    };
+    EXPECT_DOUBLE_EQ(voxel(ChooseSettings(sparse, std::nullopt)), 0.1);
+    // A denser laser (fr079: 200 points at the finest voxel, fewer above) is still held by the floor.
+    DataProfile dense = sparse;
+    dense.range_p50 = 2.43;
+    dense.source_points = {200, 140, 100, 80, 60, 50, 40, 30, 25, 20, 15};
+    EXPECT_DOUBLE_EQ(voxel(ChooseSettings(dense, std::nullopt)), 0.05);
+}
+
 /// Rewrites a simulated 2D rawlog stating `stated_deg` for its 180-degree beams.
 fs::path WithStatedAperture(const fs::path& source, double stated_deg, const fs::path& out) {
     auto reader = OpenDataset(source);
