@@ -32,8 +32,8 @@ struct CityConfig {
     double fence_probability = 0.5;    ///< gaps between buildings closed by a fence or wall
     /// Also build along the outer side of the perimeter streets: a campus or a quarter lies within a
     /// town. Without it a view outward from a perimeter street is bare ground to the horizon, which no
-    /// real place is (src/sim/README.md, "The campus's outer streets"). Own random stream.
-    bool outer_frontage = false;
+    /// real place is (src/sim/README.md, "The worlds' outer streets"). Own random stream.
+    bool outer_frontage = true;
     double ground_slope = 0.01;        ///< [m per m] overall tilt
     double ground_amplitude = 1.5;     ///< [m] undulation
     // What makes real streets registrable (issue 15, src/sim/README.md): none of it is needed for the

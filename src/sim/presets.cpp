@@ -38,7 +38,6 @@ SimConfig Campus(const std::string& name, SensorConfig sensor) {
     config.city.lamp_spacing_min = 12.0;
     config.city.lamp_spacing_max = 20.0;
     config.city.tree_street_fraction = 0.6;
-    config.city.outer_frontage = true;  // the campus lies within a town
     config.city.parked_car_density = 0.0;
     config.city.moving_cars = 0;
     config.city.removed_fraction = 0.0;
