@@ -30,17 +30,13 @@ std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Sc
     if (ranges_.empty()) return std::nullopt;  // a window of empty scans says nothing about the scene
     const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(ranges_.size() - 1));
     std::nth_element(ranges_.begin(), ranges_.begin() + k, ranges_.end());
-    window_p99_.push_back(ranges_[static_cast<std::size_t>(k)]);
+    const double p99 = ranges_[static_cast<std::size_t>(k)];
     ranges_.clear();
-    if (window_p99_.size() > kWindowsKept) window_p99_.pop_front();
-    const double p99 = *std::max_element(window_p99_.begin(), window_p99_.end());
     const double wanted = MaxRangeFor(p99);
-    const bool widen = wanted >= kWidenFactor * max_range_;
-    const bool narrow = max_range_ >= kNarrowFactor * wanted && window_p99_.size() == kWindowsKept;
-    if (!widen && !narrow) return std::nullopt;
+    if (wanted < kWidenFactor * max_range_) return std::nullopt;
     std::ostringstream reason;
-    reason << "99% of the points of the last " << window_p99_.size() * kWindowScans << " scans lie within "
-           << std::round(p99 * 10.0) / 10.0 << " m (x 1.5)";
+    reason << "99% of the points of the last " << kWindowScans << " scans lie within " << std::round(p99 * 10.0) / 10.0
+           << " m (x 1.5)";
     SettingUpdate update{position + 1, "odometry.max_range", max_range_, wanted, reason.str()};
     max_range_ = wanted;
     return update;

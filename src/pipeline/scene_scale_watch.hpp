@@ -2,12 +2,11 @@
 /// The scene's scale as a sequence unfolds (issue 14: settings "updated as the sequence unfolds where
 /// that is safe"). A drive from a narrow street into open country, or a walk from a hall into a
 /// courtyard, sees farther than its first scans did; a crop chosen from those scans would throw the
-/// new structure away. Only the odometry's range crop follows: a wider or narrower crop changes which
+/// new structure away. Only the odometry's range crop follows, and only outwards: a wider or narrower crop changes which
 /// points are registered, not the map's voxels, so it can change between two scans. The voxel sizes
 /// and the closure detector's settings stay as chosen at the start (changing them would rebuild the
 /// odometry's map and make local maps incomparable).
 #include <cstddef>
-#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,13 +22,11 @@ class SceneScaleWatch {
     /// Scans per window; every `sample_every`-th scan of a window is sampled.
     static constexpr std::size_t kWindowScans = 50;
     static constexpr std::size_t kSampleEvery = 5;
-    /// The range follows the windows' largest 99% range over this many windows: it widens at once
-    /// and narrows only after this many windows (also at the start: the first scans chose it).
-    static constexpr std::size_t kWindowsKept = 4;
-    /// Widened when the rule asks for this much more, narrowed only for this much less (a walk's 99%
-    /// range moves between 30 and 60 m from one place to the next: no flapping between 60 and 90 m).
+    /// Widened when the rule asks for this much more. Never narrowed: a narrower crop would drop what
+    /// the sensor has shown it sees (a 2D laser's corridor end, 50 m away, returns at the next turn,
+    /// and the radish mit-killian log flapped 30 <-> 80 m with narrowing), and a wide crop costs only
+    /// the rare far points.
     static constexpr double kWidenFactor = 1.5;
-    static constexpr double kNarrowFactor = 2.0;
 
     /// Active when `config` derives its settings from the data (input.auto_settings,
     /// input.follow_scene_scale) and odometry.max_range was not given explicitly.
@@ -46,7 +43,6 @@ class SceneScaleWatch {
     double max_range_ = 0.0;
     std::size_t scans_ = 0;
     std::vector<double> ranges_;     ///< sampled ranges of the current window [m]
-    std::deque<double> window_p99_;  ///< [m] the last windows' 99% ranges
 };
 
 /// "scan 1200: odometry.max_range 60 -> 110 (99% of the points ... )", for logs and summaries.
