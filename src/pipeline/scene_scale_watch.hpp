@@ -27,6 +27,8 @@ class SceneScaleWatch {
     /// and the radish mit-killian log flapped 30 <-> 80 m with narrowing), and a wide crop costs only
     /// the rare far points.
     static constexpr double kWidenFactor = 1.5;
+    /// ... up to this many map voxels (KISS-ICP: max_range = 100 voxels), or the starting range.
+    static constexpr double kVoxelsPerRange = 100.0;
 
     /// Active when `config` derives its settings from the data (input.auto_settings,
     /// input.follow_scene_scale) and odometry.max_range was not given explicitly.
@@ -41,6 +43,7 @@ class SceneScaleWatch {
   private:
     bool active_ = false;
     double max_range_ = 0.0;
+    double limit_ = 0.0;  ///< [m] widest crop the map's voxels support
     std::size_t scans_ = 0;
     std::vector<double> ranges_;     ///< sampled ranges of the current window [m]
 };

@@ -34,9 +34,10 @@ Scan Courtyard(double radius, std::size_t index) {
     return scan;
 }
 
-PipelineConfig AutoConfig(double max_range) {
+PipelineConfig AutoConfig(double max_range, double voxel = 1.0) {
     PipelineConfig config;
     config.odometry.max_range = max_range;
+    config.odometry.voxel_size = voxel;
     return config;
 }
 
@@ -57,12 +58,22 @@ TEST(SceneScaleWatch, WidensAtOnceWhenTheSceneOpensAndKeepsItWhenTheSceneCloses)
     // Back in the courtyard: the crop stays wide (the square may come back into view).
     for (; position < 600; ++position) EXPECT_FALSE(watch.Add(position, Courtyard(12.0, position))) << position;
     EXPECT_DOUBLE_EQ(watch.max_range(), 100.0);
-    // A little wider is not worth a change; much wider is.
+    // A little wider is not worth a change; and 1 m voxels support no more than 100 m (KISS-ICP's ratio).
     for (; position < 700; ++position) EXPECT_FALSE(watch.Add(position, Courtyard(80.0, position))) << position;
-    std::optional<SettingUpdate> again;
-    for (; position < 750 && !again; ++position) again = watch.Add(position, Courtyard(120.0, position));
-    ASSERT_TRUE(again);
-    EXPECT_DOUBLE_EQ(again->to, MaxRangeFor(120.0 / std::cos(6.0 * M_PI / 180.0)));
+    for (; position < 800; ++position) EXPECT_FALSE(watch.Add(position, Courtyard(150.0, position))) << position;
+}
+
+TEST(SceneScaleWatch, WidensUpToAHundredMapVoxels) {
+    // 0.1 m voxels (a 2D laser indoors): a 30 m crop already exceeds 100 voxels, so nothing widens;
+    // 0.5 m voxels: up to 50 m however far the scene reaches.
+    SceneScaleWatch fine(AutoConfig(30.0, 0.1)), coarse(AutoConfig(30.0, 0.5));
+    std::optional<SettingUpdate> widened;
+    for (std::size_t i = 0; i < 100; ++i) {
+        EXPECT_FALSE(fine.Add(i, Courtyard(60.0, i))) << i;
+        if (auto update = coarse.Add(i, Courtyard(60.0, i))) widened = update;
+    }
+    ASSERT_TRUE(widened);
+    EXPECT_DOUBLE_EQ(widened->to, 50.0);
 }
 
 TEST(SceneScaleWatch, ARangeFromWiderFirstScansIsNeverNarrowed) {
