@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "closures/ground_alignment.hpp"
+#include "core/quantile.hpp"
 #include "core/voxel.hpp"
 
 namespace revisit {
@@ -14,13 +15,6 @@ namespace {
 
 /// Points kept per scan for the percentiles: enough for 1% quantiles, cheap for 125k-point scans.
 constexpr std::size_t kSamplesPerScan = 4096;
-
-double Quantile(std::vector<double> values, double q) {
-    if (values.empty()) return 0.0;
-    const std::size_t k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-    return values[k];
-}
 
 std::string Fixed(double value, int digits) {
     std::ostringstream out;

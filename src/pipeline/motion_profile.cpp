@@ -1,8 +1,9 @@
 #include "pipeline/motion_profile.hpp"
 
-#include <algorithm>
 #include <iomanip>
 #include <sstream>
+
+#include "core/quantile.hpp"
 
 namespace revisit {
 
@@ -42,10 +43,7 @@ MotionProfile MotionMeter::Profile() const {
     profile.duration = last_time_ - first_time_;
     if (speeds_.size() < 5) return profile;  // no usable time stamps
     // The 75th percentile: a platform that stands for part of the window still shows its pace.
-    std::vector<double> speeds = speeds_;
-    const std::size_t k = (speeds.size() - 1) * 3 / 4;
-    std::nth_element(speeds.begin(), speeds.begin() + static_cast<std::ptrdiff_t>(k), speeds.end());
-    profile.speed = speeds[k];
+    profile.speed = Quantile(speeds_, 0.75);
     profile.source = from_prior_ ? "odometry prior" : "lidar odometry";
     return profile;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/quantile.hpp"
 #include "pipeline/auto_settings.hpp"
 
 namespace revisit {
@@ -32,10 +33,8 @@ std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Sc
     }
     if (scans_ % kWindowScans != 0) return std::nullopt;
     if (ranges_.empty()) return std::nullopt;  // a window of empty scans says nothing about the scene
-    const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(ranges_.size() - 1));
-    std::nth_element(ranges_.begin(), ranges_.begin() + k, ranges_.end());
-    const double p99 = ranges_[static_cast<std::size_t>(k)];
-    ranges_.clear();
+    const double p99 = Quantile(std::move(ranges_), 0.99);
+    ranges_.clear();  // moved from: empty again for the next window
     const double wanted = std::min(MaxRangeFor(p99), limit_);
     if (wanted < kWidenFactor * max_range_) return std::nullopt;
     std::ostringstream reason;
@@ -43,6 +42,12 @@ std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Sc
            << " m (x 1.5)";
     SettingUpdate update{position + 1, "odometry.max_range", max_range_, wanted, reason.str()};
     max_range_ = wanted;
+    return update;
+}
+
+std::optional<SettingUpdate> SceneScaleWatch::Follow(std::size_t position, const Scan& scan, LidarOdometry& odometry) {
+    auto update = Add(position, scan);
+    if (update) odometry.SetMaxRange(update->to);
     return update;
 }
 
