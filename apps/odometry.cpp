@@ -36,10 +36,7 @@ int RunOdometry(const OdometryOptions& o) {
     while (auto scan = reader->Next()) {
         if (InterruptRequested()) break;
         trajectory.poses.push_back(odometry.RegisterScan(*scan));
-        if (auto update = scene_scale.Add(trajectory.size() - 1, *scan)) {
-            odometry.SetMaxRange(update->to);
-            progress.Message(DescribeUpdate(*update));
-        }
+        if (auto update = scene_scale.Follow(trajectory.size() - 1, *scan, odometry)) progress.Message(DescribeUpdate(*update));
         if (!odometry.LastStats().warning.empty() && odometry.NumDegenerateFrames() <= kShownWarnings) {
             progress.Message("warning: " + odometry.LastStats().warning);
         }

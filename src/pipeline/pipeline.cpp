@@ -206,8 +206,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                 state.odometry_fallbacks.push_back(position);
                 if (state.odometry_fallbacks.size() <= kShownFallbacks) progress.Message("warning: " + odometry->LastStats().warning);
             }
-            if (auto update = scene_scale.Add(position, *scan)) {
-                odometry->SetMaxRange(update->to);
+            if (auto update = scene_scale.Follow(position, *scan, *odometry)) {
                 progress.Message(DescribeUpdate(*update));
                 state.setting_updates.push_back(std::move(*update));
             }

@@ -119,6 +119,18 @@ TEST(SceneScaleWatch, RealWalkAndDriveKeepTheirStartingRange) {
     }
 }
 
+TEST(SceneScaleWatch, FollowAppliesTheChangeToTheOdometry) {
+    SceneScaleWatch watch(AutoConfig(30.0));
+    OdometryConfig config;
+    config.max_range = 30.0;
+    config.voxel_size = 1.0;
+    LidarOdometry odometry(config);
+    std::optional<SettingUpdate> update;
+    for (std::size_t i = 0; i < 50 && !update; ++i) update = watch.Follow(i, Courtyard(60.0, i), odometry);
+    ASSERT_TRUE(update);
+    EXPECT_DOUBLE_EQ(odometry.config().max_range, update->to);
+}
+
 TEST(LidarOdometry, SetMaxRangeWidensTheCropFromTheNextScan) {
     OdometryConfig config;
     config.max_range = 30.0;

@@ -3,8 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 
 #include "evaluation/trajectory_metrics.hpp"
 #include "pipeline/odometry_run.hpp"
@@ -15,22 +14,26 @@
 namespace revisit {
 namespace {
 
+/// The first `scans` of `config`'s walk written to `folder` (a KITTI folder), then registered with
+/// the settings from the data, as `revisit simulate` and `revisit odometry` would.
+test::OdometryRun SimulateAndRegister(SimConfig config, std::size_t scans, const std::filesystem::path& folder) {
+    config.max_scans = scans;
+    RunSimulation(config, folder, true);
+    return test::RunOdometry(folder);
+}
+
 TEST(SimulatedWalk, WrittenHandheldWalkRegistersLikeTheRealWalk) {
     // The campus walk's Livox-like sensor sways (up to ~30 deg/s) during each 0.1 s sweep. Written with
     // that distortion but without the times to undo it, these 100 scans (13.8 m) gave +7.6% travel and
     // 1.6% error on 10 m segments (over 280 scans +21.5%, 2.2%); undistorted +0.9%, 0.23% (the real
     // walk's deskewed keyframes: +4.6%, 0.6%).
     test::TempDir dir;
-    SimConfig config = SimPreset("campus-handheld");
+    const SimConfig config = SimPreset("campus-handheld");
     ASSERT_TRUE(config.sensor.motion_distortion);
-    config.max_scans = 100;
-    RunSimulation(config, dir / "walk", true);
-    std::ifstream yaml(dir / "walk" / "sim.yaml");
-    std::stringstream text;
-    text << yaml.rdbuf();
-    EXPECT_NE(text.str().find("motion_distortion: false"), std::string::npos) << text.str();
+    const test::OdometryRun run = SimulateAndRegister(config, 100, dir / "walk");
+    const std::string yaml = test::ReadFile(dir / "walk" / "sim.yaml");
+    EXPECT_NE(yaml.find("motion_distortion: false"), std::string::npos) << yaml;
 
-    const test::OdometryRun run = test::RunOdometry(dir / "walk");
     ASSERT_EQ(run.estimate.size(), 100u);
     EXPECT_EQ(run.fallbacks, 0u);
     const double true_travel = PathLength(run.reference), travel = PathLength(run.estimate);
@@ -49,11 +52,9 @@ TEST(SimulatedWalk, TheCampusCornerIsFollowedBecauseTheWorldGoesOnBeyondItsOuter
     // against the real courtyard's 12%) and the odometry lost 42-54 deg of the turn; with the outer
     // frontage (CityConfig::outer_frontage) it is followed within 2.1 deg.
     test::TempDir dir;
-    SimConfig config = SimPreset("campus-handheld");
+    const SimConfig config = SimPreset("campus-handheld");
     ASSERT_TRUE(config.city.outer_frontage);
-    config.max_scans = 350;
-    RunSimulation(config, dir / "walk", true);
-    const test::OdometryRun run = test::RunOdometry(dir / "walk");
+    const test::OdometryRun run = SimulateAndRegister(config, 350, dir / "walk");
     ASSERT_EQ(run.estimate.size(), 350u);
     EXPECT_EQ(run.fallbacks, 0u);
     const Eigen::Isometry3d true_turn = run.reference[280].inverse() * run.reference[349];
