@@ -8,6 +8,7 @@
 #include "core/se3.hpp"
 #include "evaluation/ground_truth_closures.hpp"
 #include "optimization/closure_consistency.hpp"
+#include "optimization/map_overlap.hpp"
 #include "optimization/pose_graph.hpp"
 #include "optimization/refinement.hpp"
 #include "report/report_writer.hpp"
@@ -127,6 +128,26 @@ void ConsistencyCases(const CaseContext& c) {
                                    });
     c.Add(std::move(measured), "ClosureConsistency::Add + ConsistentSet after every closure, " + std::to_string(closures) +
                                    " closures (1 in 10 wrong), " + std::to_string(kept) + " kept at the end");
+}
+
+void ProximityCases(const CaseContext& c) {
+    // The proximity pass's prediction (registrations are the refinement's figure): the same loop's maps,
+    // each with a footprint of 1,000 cells (a 40 x 25 cell block, 1 m cells), paired by PredictOverlaps
+    // from the true poses; every map overlaps its neighbours and the maps one lap away.
+    const std::size_t maps = std::size_t(c.scale.consistency_maps);
+    const Poses poses = LoopRoute(maps, 10.0);
+    std::vector<Eigen::Vector2d> block;
+    for (int x = -20; x < 20; ++x)
+        for (int y = -12; y <= 12; ++y) block.emplace_back(x + 0.5, y + 0.5);
+    const std::vector<std::vector<Eigen::Vector2d>> footprints(maps, block);
+    std::size_t pairs = 0;
+    Measurement measured = Measure("proximity/" + std::to_string(maps) + " maps", "ms/map", FigureKind::kMsPerItem,
+                                   Heavy(c.scale), [&] {
+                                       pairs = PredictOverlaps(footprints, poses, 1.0, 0.3, 3, [](int q, int r) { return q == r + 1; }).size();
+                                       return double(maps);
+                                   });
+    c.Add(std::move(measured), "PredictOverlaps over " + std::to_string(maps) + " footprints of " + std::to_string(block.size()) +
+                                   " cells, " + std::to_string(pairs) + " pairs to register");
 }
 
 void GroundTruthCases(const CaseContext& c) {

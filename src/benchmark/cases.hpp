@@ -43,6 +43,7 @@ void RefinementCases(const CaseContext& c);
 void PoseGraphCases(const CaseContext& c);
 void GroundTruthCases(const CaseContext& c);
 void ConsistencyCases(const CaseContext& c);
+void ProximityCases(const CaseContext& c);  ///< the proximity pass's overlap prediction per map
 void ReportCases(const CaseContext& c);
 void EndToEndCases(const CaseContext& c);
 

@@ -21,7 +21,7 @@ const CaseGroup kGroups[] = {
     {"local_map", LocalMapCases},    {"closures", ClosureStageCases}, {"tree", TreeCases},
     {"fleet_tree", FleetTreeCases},
     {"refinement", RefinementCases}, {"pose_graph", PoseGraphCases},  {"ground_truth", GroundTruthCases},
-    {"consistency", ConsistencyCases}, {"report", ReportCases},
+    {"consistency", ConsistencyCases}, {"proximity", ProximityCases}, {"report", ReportCases},
 };
 
 std::filesystem::path FreshScratch() {

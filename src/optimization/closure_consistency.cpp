@@ -219,7 +219,7 @@ std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adj
     return CliqueSearch(adjacency, weight, max_steps).Run();
 }
 
-void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry) {
+void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry, bool may_displace) {
     const std::size_t v = closures_.size();
     odometry_chi2_.push_back(odometry.one_chain ? OdometryChi2(closure, odometry, noise_, config_) : 0.0);
     const bool fits_odometry = odometry_chi2_.back() <= config_.odometry_chi2_threshold;
@@ -245,6 +245,7 @@ void ClosureConsistency::Add(const ConsistencyClosure& closure, const Consistenc
         set_weight_ += TieWeight(v);
         return;
     }
+    if (!may_displace) return;
     std::vector<std::size_t> neighbours;
     for (std::size_t k = 0; k < v; ++k)
         if (row[k]) neighbours.push_back(k);

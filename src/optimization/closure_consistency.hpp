@@ -80,7 +80,9 @@ class ClosureConsistency {
     /// clique search among the new closure's consistent partners only when it disagrees with the
     /// current set. A closure the odometry contradicts (`OdometryChi2` above `odometry_chi2_threshold`) agrees
     /// with nothing.
-    void Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry);
+    /// `may_displace` false (the proximity pass's closures): the closure joins the set only when it agrees
+    /// with all of it, and the set is never re-solved around it, so it cannot displace a closure there.
+    void Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry, bool may_displace = true);
     /// One flag per added closure: in the maximum consistent set (ties: the larger sum of scores, then
     /// the closer agreement with the odometry alone), kept
     /// incrementally as closures arrive. A single closure is kept (nothing to check it against); with

@@ -155,6 +155,13 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("consistency.closure_sigma_rotation_deg", &pcm.closure_sigma_rotation_deg, "deg", "same, rotation", Range{1e-4, 180});
     s.Add("consistency.exact_max_steps", &pcm.exact_max_steps, "",
           "maximum-clique search budget (exact below it; past it the best set found is kept)", Range{1, 1000000000});
+    auto& prox = c.proximity;
+    s.Add("proximity.enabled", &prox.enabled, "",
+          "after the final optimization, register maps the corrected poses lay over each other (README: closures from the corrected map)");
+    s.Add("proximity.rounds", &prox.rounds, "", "passes, each from the estimate the previous one improved", Range{0, 100});
+    s.Add("proximity.min_overlap", &prox.min_overlap, "",
+          "predicted share of the smaller map's ground cells (1/20 of a map length) from which a pair is registered", Range{0, 1});
+    s.Add("proximity.max_per_map", &prox.max_per_map, "", "registrations per map and round, largest predicted overlap first", Range{0, 100000});
 }
 
 void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {

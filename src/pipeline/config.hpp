@@ -44,6 +44,18 @@ struct GraphNoiseConfig {
     double min_weight = 0.1;
 };
 
+/// The proximity pass (README, "Closures from the corrected map"): after the final optimization, maps
+/// that the corrected poses lay over each other are registered directly from that estimate, verified
+/// like any closure, and join the graph when they agree with every accepted closure.
+struct ProximityConfig {
+    bool enabled = true;
+    int rounds = 2;             ///< passes, each from the estimate the previous one improved
+    /// Predicted overlap (shared ground cells / cells of the smaller map, cells of 1/20 of a map's
+    /// length) from which a pair is registered.
+    double min_overlap = 0.3;
+    int max_per_map = 3;        ///< registrations per map and round, largest predicted overlap first (cost bound)
+};
+
 struct OutputConfig {
     double map_voxel = 0.5;      ///< [m] downsampling of each local map stored in the run folder
     double global_map_voxel = 0.5;  ///< [m] downsampling of the corrected global map (PLY)
@@ -84,6 +96,7 @@ struct PipelineConfig {
     PoseGraphConfig graph = PipelineGraphConfig();
     GraphNoiseConfig graph_noise;
     ClosureConsistencyConfig consistency;
+    ProximityConfig proximity;
     GtClosureConfig ground_truth;
     ClosureTruthConfig truth;
     PredictedClosureConfig predicted;

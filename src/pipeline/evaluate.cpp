@@ -54,33 +54,34 @@ std::optional<GtClosures> ReadCache(const fs::path& file, const std::string& key
     return in ? ReadGroundTruthClosures(in, key) : std::nullopt;
 }
 
+MapClosureForEval ForEval(const ClosureRecord& record) {
+    const auto& c = record.closure;
+    MapClosureForEval e;
+    e.query_first_scan = c.query_scans.first;
+    e.query_last_scan = c.query_scans.last;
+    e.ref_first_scan = c.ref_scans.first;
+    e.ref_last_scan = c.ref_scans.last;
+    // The refined pose where there is one: it is what the graph uses.
+    e.T_query_ref = record.refined && record.accepted ? record.refinement.T_query_ref : Eigen::Isometry3d(c.T_query_ref);
+    e.inliers = c.num_inliers;
+    return e;
+}
+
 std::vector<MapClosureForEval> ForEval(const RunState& state, const std::string& method) {
     std::vector<MapClosureForEval> out;
-    for (const auto& record : state.closures) {
-        if (record.method != method) continue;
-        const auto& c = record.closure;
-        MapClosureForEval e;
-        e.query_first_scan = c.query_scans.first;
-        e.query_last_scan = c.query_scans.last;
-        e.ref_first_scan = c.ref_scans.first;
-        e.ref_last_scan = c.ref_scans.last;
-        // The refined pose where there is one: it is what the graph uses.
-        e.T_query_ref = record.refined && record.accepted ? record.refinement.T_query_ref : Eigen::Isometry3d(c.T_query_ref);
-        e.inliers = c.num_inliers;
-        out.push_back(e);
-    }
+    for (const auto& record : state.closures)
+        if (record.method == method) out.push_back(ForEval(record));
     return out;
 }
 
-/// The accepted density closures, for their truth.
-std::vector<MapClosureForEval> Accepted(const RunState& state) {
+/// The accepted closures that correct the trajectory (the detector's and the proximity pass's), for
+/// their truth, in run order; `methods` gets each one's method.
+std::vector<MapClosureForEval> Accepted(const RunState& state, std::vector<std::string>& methods) {
     std::vector<MapClosureForEval> accepted;
-    const auto all = ForEval(state, "density");
-    std::size_t k = 0;
     for (const auto& record : state.closures) {
-        if (record.method != "density") continue;
-        if (record.accepted) accepted.push_back(all[k]);
-        ++k;
+        if (!record.accepted || !CorrectsTrajectory(record)) continue;
+        accepted.push_back(ForEval(record));
+        methods.push_back(record.method);
     }
     return accepted;
 }
@@ -103,11 +104,12 @@ json TrajectoryJson(const TrajectoryEvaluation& t) {
             {"kitti_segments", t.kitti.num_segments}};
 }
 
-json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEval>& accepted, const ClosureTruthConfig& config) {
+json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEval>& accepted, const std::vector<std::string>& methods,
+                      const ClosureTruthConfig& config) {
     json closures = json::array();
     for (std::size_t k = 0; k < accepted.size(); ++k) {
         const auto& verdict = e.truth.verdicts[k];
-        closures.push_back({{"query_first_scan", accepted[k].query_first_scan}, {"ref_first_scan", accepted[k].ref_first_scan},
+        closures.push_back({{"method", methods[k]}, {"query_first_scan", accepted[k].query_first_scan}, {"ref_first_scan", accepted[k].ref_first_scan},
                             {"true", verdict.is_true}, {"translation_error_m", verdict.error.translation},
                             {"yaw_error_deg", verdict.error.yaw_deg}});
     }
@@ -119,6 +121,7 @@ json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEva
                           {"stage", MissStageName(m.stage)}, {"detail", m.detail}});
     }
     return {{"closure_truth", {{"true", e.truth.num_true}, {"false", e.truth.num_false},
+                               {"proximity_true", e.proximity_true}, {"proximity_false", e.proximity_false},
                                {"true_translation_m", config.true_translation}, {"true_rotation_deg", config.true_rotation_deg},
                                {"accepted", closures}}},
             {"revisit_coverage", {{"radius_m", config.revisit_radius}, {"gap_m", config.revisit_gap},
@@ -198,8 +201,13 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     std::vector<MapRange> ranges;
     for (const auto& m : state.maps) ranges.push_back({m.first_scan, m.last_scan});
     e.map_recall = ComputeMapRecall(ranges, density, gt.scan_pairs, map_config);
-    const auto accepted = Accepted(state);
+    std::vector<std::string> methods;
+    const auto accepted = Accepted(state, methods);
     e.truth = JudgeClosures(accepted, state.reference, config.truth);
+    for (std::size_t k = 0; k < accepted.size(); ++k) {
+        if (methods[k] != "proximity") continue;
+        ++(e.truth.verdicts[k].is_true ? e.proximity_true : e.proximity_false);
+    }
     std::vector<std::pair<std::size_t, std::size_t>> true_pairs;
     for (std::size_t k = 0; k < accepted.size(); ++k) {
         if (!e.truth.verdicts[k].is_true) continue;
@@ -207,7 +215,7 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     }
     e.coverage = ComputeRevisitCoverage(state.reference, ranges, true_pairs, config.truth);
     e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_matches, config.detector.min_inliers);
-    WriteMetrics(run, e, VerificationJson(e, accepted, config.truth));
+    WriteMetrics(run, e, VerificationJson(e, accepted, methods, config.truth));
     return e;
 }
 

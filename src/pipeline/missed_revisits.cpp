@@ -81,7 +81,7 @@ MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanP
     }
     std::size_t accepted_index = 0;
     for (const auto& record : state.closures) {
-        if (record.method != "density") continue;
+        if (!CorrectsTrajectory(record)) continue;
         const bool is_true = record.accepted && accepted_index < truth.verdicts.size() && truth.verdicts[accepted_index].is_true;
         accepted_index += record.accepted ? 1 : 0;
         const auto& c = record.closure;

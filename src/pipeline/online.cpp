@@ -2,9 +2,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <set>
 #include <string>
+#include <utility>
 
 #include "core/voxel.hpp"
+#include "optimization/map_overlap.hpp"
 #include "optimization/trajectory_correction.hpp"
 
 namespace revisit {
@@ -90,6 +93,11 @@ PipelineUpdate ClosurePipeline::Finish() {
     PipelineUpdate update;
     if (auto last = mapper_.Finish()) update = ProcessMap(*last);
     Optimize(true);
+    for (int round = 0; config_.proximity.enabled && round < config_.proximity.rounds; ++round) {
+        if (AddProximityClosures() == 0) break;
+        ApplyConsistency();
+        Optimize(true);
+    }
     // The robust kernel has already switched these off (their weight is near zero, so the corrected
     // trajectory ignores them); say so instead of calling them accepted.
     for (auto& record : closures_) {
@@ -106,6 +114,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     auto start = std::chrono::steady_clock::now();
     const auto stored = Downsampled(map.points, config_.output.map_voxel);
     store_->Put(map.id, stored);
+    if (config_.proximity.enabled) footprints_.push_back(MapFootprint(stored, FootprintCell()));
     Time("map_store", MillisecondsSince(start));
 
     start = std::chrono::steady_clock::now();
@@ -165,6 +174,38 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     return update;
 }
 
+double ClosurePipeline::FootprintCell() const {
+    return std::max(config_.local_map.split_distance / 20.0, config_.output.map_voxel);
+}
+
+std::size_t ClosurePipeline::AddProximityClosures() {
+    const auto start = std::chrono::steady_clock::now();
+    // Pairs an accepted closure already joins, or this pass already tried, are not registered again.
+    std::set<std::pair<int, int>> done;
+    for (const auto& record : closures_)
+        if (record.accepted || record.method == "proximity") done.insert({record.closure.query_id, record.closure.ref_id});
+    const auto& p = config_.proximity;
+    // Consecutive maps are joined by the odometry and share the carried-over points: not a revisit.
+    const auto pairs = PredictOverlaps(footprints_, corrected_nodes_, FootprintCell(), p.min_overlap, p.max_per_map,
+                                       [&](int query, int ref) { return query == ref + 1 || done.count({query, ref}) > 0; });
+    std::size_t verified = 0;
+    for (const auto& pair : pairs) {
+        ClosureRecord record;
+        record.method = "proximity";
+        Closure& closure = record.closure;
+        closure.query_id = pair.query;
+        closure.ref_id = pair.ref;
+        closure.query_scans = {maps_[std::size_t(pair.query)].first_scan, maps_[std::size_t(pair.query)].last_scan};
+        closure.ref_scans = {maps_[std::size_t(pair.ref)].first_scan, maps_[std::size_t(pair.ref)].last_scan};
+        closure.T_query_ref = (corrected_nodes_[std::size_t(pair.query)].inverse() * corrected_nodes_[std::size_t(pair.ref)]).matrix();
+        Refine(record, store_->Get(pair.query), detector_.maps()[std::size_t(pair.query)], false);
+        verified += record.refinement.accepted;
+        closures_.push_back(std::move(record));
+    }
+    Time("proximity", MillisecondsSince(start));
+    return verified;
+}
+
 ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points) {
     ClosureRecord record;
     record.closure = closure;
@@ -173,12 +214,19 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
                         std::to_string(config_.detector.min_inliers) + " inliers)";
         return record;
     }
+    // Closures are verified as their query map is added: it is the detector's newest map.
+    Refine(record, query_points, detector_.maps().back(), true);
+    return record;
+}
+
+void ClosurePipeline::Refine(ClosureRecord& record, const std::vector<Eigen::Vector3f>& query_points,
+                             const MapRecord& query_map, bool may_displace) {
+    const Closure& closure = record.closure;
     const auto start = std::chrono::steady_clock::now();
     const auto ref_points = store_->Get(closure.ref_id);
-    // Closures are verified as their query map is added: it is the detector's newest map. Its
-    // levelling gives the vertical along which the closure's height is searched.
+    // The query map's levelling gives the vertical along which the closure's height is searched.
     record.refinement = RefineAlignment(ToDouble(ref_points), ToDouble(query_points), Eigen::Isometry3d(closure.T_query_ref),
-                                        config_.refinement, UpInMap(detector_.maps().back()));
+                                        config_.refinement, UpInMap(query_map));
     Time("refinement", MillisecondsSince(start));
     record.refined = true;
     record.accepted = record.refinement.accepted;
@@ -198,10 +246,9 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
         verified_edges_.push_back(edge);
         verified_closure_.push_back(closures_.size());
         consistency_.Add({closure.query_id, closure.ref_id, record.refinement.T_query_ref, double(closure.num_inliers)},
-                         {&nodes_, &node_travel_, &node_position_integral_});
+                         {&nodes_, &node_travel_, &node_position_integral_}, may_displace);
         ++accepted_since_optimization_;
     }
-    return record;
 }
 
 std::string ClosurePipeline::OdometryContradiction(const Closure& closure, std::size_t k) const {

@@ -60,6 +60,13 @@ class ClosurePipeline {
   private:
     PipelineUpdate ProcessMap(const LocalMap& map);
     ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points);
+    /// Refines `record`'s closure against the stored reference map; a verified one enters the consistency
+    /// check (`may_displace`: see ClosureConsistency::Add).
+    void Refine(ClosureRecord& record, const std::vector<Eigen::Vector3f>& query_points, const MapRecord& query_map,
+                bool may_displace);
+    /// One round of the proximity pass over the corrected poses; returns how many registrations were verified.
+    std::size_t AddProximityClosures();
+    double FootprintCell() const;  ///< [m] ground cells of the maps' footprints
     /// Why verified closure k (of the consistency check) was dropped against the odometry alone.
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
@@ -75,6 +82,7 @@ class ClosurePipeline {
     std::vector<MapRecordSummary> maps_;
     std::vector<ClosureRecord> closures_;
     std::vector<MapComparison> comparisons_;
+    std::vector<std::vector<Eigen::Vector2d>> footprints_;  ///< per map: its ground cells (MapFootprint)
     Poses nodes_;            ///< odometry map origins
     std::vector<double> node_travel_;  ///< [m] travel at each map origin
     std::vector<Eigen::Vector3d> node_position_integral_;  ///< the consistency check's leg means (AppendPositionIntegral)

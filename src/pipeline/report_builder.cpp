@@ -162,13 +162,16 @@ ReportInput LoadReportInput(const RunFolder& run) {
     const nlohmann::json metrics = ReadMetrics(run);
     const auto false_closures = FalseClosures(metrics);
     for (const auto& record : state.closures) {
-        if (record.method != "density") continue;
+        // The proximity pass's registrations (no images matched: 0 votes, 0 inliers) are shown when accepted.
+        const bool proximity = record.method == "proximity";
+        if (record.method != "density" && !(proximity && record.accepted)) continue;
         ClosureEntry entry;
         entry.closure = record.closure;
         entry.accepted = record.accepted;
         entry.reached_threshold = record.refined;
         entry.verified = record.refined && record.refinement.accepted;
         entry.reason = record.accepted ? "accepted (graph weight " + FormatNumber(record.graph_weight, 2) + ")" : record.reason;
+        if (proximity) entry.reason = "proximity pass (the corrected poses overlay the maps): " + entry.reason;
         if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first}))
             entry.reason += ", FALSE against the reference poses";
         if (record.refined) {

@@ -29,7 +29,9 @@ struct MapRecordSummary {
 };
 
 struct ClosureRecord {
-    std::string method = "density";  ///< "density" or "elevation" (the ablation, never used in the graph)
+    /// "density" (the detector), "proximity" (registered because the corrected poses lay the two maps
+    /// over each other) or "elevation" (the ablation, never used in the graph).
+    std::string method = "density";
     Closure closure;
     RefinementResult refinement;
     bool refined = false;            ///< false: below the acceptance threshold, not refined
@@ -52,6 +54,9 @@ struct StageTimer {
     double total_ms = 0.0;
     std::size_t count = 0;
 };
+
+/// The closure is one the pose graph may use: the detector's or the proximity pass's.
+inline bool CorrectsTrajectory(const ClosureRecord& record) { return record.method == "density" || record.method == "proximity"; }
 
 struct RunState {
     std::string dataset;

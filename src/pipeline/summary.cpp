@@ -14,7 +14,10 @@ constexpr double kApeUnchangedFraction = 0.005;  ///< relative changes below thi
 
 /// Truth of the accepted closures, revisit coverage and where the missed revisits were lost.
 void PrintVerification(std::ostream& out, const RunEvaluation& e) {
-    out << "  accepted closures: " << e.truth.num_true << " true / " << e.truth.num_false << " false\n";
+    out << "  accepted closures: " << e.truth.num_true << " true / " << e.truth.num_false << " false";
+    if (e.proximity_true + e.proximity_false > 0)
+        out << " (of them from the proximity pass: " << e.proximity_true << " true / " << e.proximity_false << " false)";
+    out << '\n';
     out << "  revisit coverage:  " << std::setprecision(0) << 100.0 * e.coverage.coverage << "% (" << e.coverage.covered_scans
         << " of " << e.coverage.revisit_scans << " revisiting scans in a map joined by a true closure)\n";
     out << "  overlapping map pairs: " << e.missed.overlapping_pairs << ", found " << e.missed.found_pairs;
@@ -42,17 +45,30 @@ std::string DescribeApeChange(double before_m, double after_m) {
 
 void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation,
                      const PostRunSeconds& after_chain) {
-    std::size_t density = 0, refined = 0, verified = 0;
+    std::size_t density = 0, refined = 0, verified = 0, accepted = 0;
+    std::size_t proximity = 0, proximity_verified = 0, proximity_accepted = 0;
     for (const auto& c : state.closures) {
+        if (c.method == "proximity") {
+            ++proximity;
+            proximity_verified += c.refinement.accepted;
+            proximity_accepted += c.accepted;
+            continue;
+        }
         density += c.method == "density";
         refined += c.refined;
         verified += c.refined && c.refinement.accepted;
+        accepted += c.accepted;
     }
     out << std::fixed << std::setprecision(1);
     out << "\n  scans             " << state.odometry.size() << (state.complete ? "" : "  (interrupted)") << '\n'
         << "  local maps        " << state.maps.size() << '\n'
         << "  closures          " << density << " detected (>= 3 inliers), " << refined << " refined in 3D, " << verified
-        << " verified, " << state.NumAccepted() << " accepted by the pose graph\n"
+        << " verified, " << accepted << " accepted by the pose graph\n";
+    if (proximity > 0) {
+        out << "  proximity pass    " << proximity << " map pairs the corrected poses overlay registered, " << proximity_verified
+            << " verified, " << proximity_accepted << " accepted\n";
+    }
+    out
         << "  wall time         " << state.wall_seconds + after_chain.evaluation.value_or(0.0) + after_chain.report.value_or(0.0)
         << " s: chain " << state.wall_seconds << " s ("
         << (state.wall_seconds > 0 ? state.odometry.size() / state.wall_seconds : 0.0) << " scans/s)";

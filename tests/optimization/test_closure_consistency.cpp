@@ -153,6 +153,33 @@ TEST(ClosureConsistency, ASingleClosureIsKeptAndDisablingKeepsAll) {
     EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 1}));
 }
 
+TEST(ClosureConsistency, AClosureThatMayNotDisplaceJoinsOnlyASetItAgreesWith) {
+    // The proximity pass's closures come after the detector's: two wrong ones that agree with each other
+    // would outnumber the one true closure and displace it; they may not.
+    const TwoLaps laps;
+    ClosureConsistency consistency(ClosureConsistencyConfig{}, OdometryNoise{});
+    consistency.Add(laps.True(59, 19), laps.Odometry());
+    for (int q : {62, 63}) {
+        auto wrong = laps.True(q, 22);
+        wrong.T_query_ref = wrong.T_query_ref * kWrong;
+        consistency.Add(wrong, laps.Odometry(), false);
+    }
+    EXPECT_TRUE(consistency.Consistent(1, 2));
+    EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 0, 0}));
+    consistency.Add(laps.True(70, 30), laps.Odometry(), false);  // agrees with the set: joins it
+    EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 0, 0, 1}));
+
+    // Allowed to displace, the same two wrong closures take the set from the lone true one.
+    ClosureConsistency displacing(ClosureConsistencyConfig{}, OdometryNoise{});
+    displacing.Add(laps.True(59, 19), laps.Odometry());
+    for (int q : {62, 63}) {
+        auto wrong = laps.True(q, 22);
+        wrong.T_query_ref = wrong.T_query_ref * kWrong;
+        displacing.Add(wrong, laps.Odometry());
+    }
+    EXPECT_EQ(displacing.ConsistentSet(), (std::vector<char>{0, 1, 1}));
+}
+
 TEST(MaximumClique, ExactOnSmallGraphsTiesByWeightAndDeterministic) {
     // Two triangles {0,1,2} and {3,4,5} joined by edge 2-3; the second is heavier.
     std::vector<std::vector<char>> adjacency(6, std::vector<char>(6, 0));
