@@ -205,11 +205,12 @@ std::string Judge(const RefinementResult& result, const Eigen::Isometry3d& T_gue
     if (result.overlap < config.min_overlap) return Describe("overlap", result.overlap, "below", config.min_overlap);
     if (result.rms > config.max_rms) return Describe("rms [m]", result.rms, "above", config.max_rms);
     const Eigen::Isometry3d correction = T_guess.inverse() * result.T_query_ref;
+    const std::string moved = kCorrectionFromGuess;
     if (correction.translation().norm() > config.max_correction_translation)
-        return Describe("correction from guess [m]", correction.translation().norm(), "above", config.max_correction_translation);
+        return Describe((moved + " [m]").c_str(), correction.translation().norm(), "above", config.max_correction_translation);
     const double angle = Eigen::AngleAxisd(correction.linear()).angle();
     if (angle > config.max_correction_rotation)
-        return Describe("correction from guess [rad]", angle, "above", config.max_correction_rotation);
+        return Describe((moved + " [rad]").c_str(), angle, "above", config.max_correction_rotation);
     return {};
 }
 

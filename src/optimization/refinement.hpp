@@ -62,6 +62,10 @@ struct RefinementResult {
     std::string reason;            ///< why not accepted; empty when accepted
 };
 
+/// The start of `RefinementResult::reason` when the refined pose moved farther from the guess than
+/// `max_correction_*` allow (the proximity pass retries those from a better estimate).
+inline constexpr const char* kCorrectionFromGuess = "correction from guess";
+
 /// Registers the reference map onto the query map starting from `T_query_ref_guess`
 /// (the 2D closure pose lifted to 3D) and judges the result with the config's thresholds.
 /// `up_in_query`: the vertical in the query frame (its ground normal), for the vertical search.

@@ -63,7 +63,7 @@ class ClosurePipeline {
     /// Refines `record`'s closure against the stored reference map; a verified one enters the consistency
     /// check (`may_displace`: see ClosureConsistency::Add).
     void Refine(ClosureRecord& record, const std::vector<Eigen::Vector3f>& query_points, const MapRecord& query_map,
-                bool may_displace);
+                const RefinementConfig& refinement, bool may_displace);
     /// One round of the proximity pass over the corrected poses; returns how many registrations were verified.
     std::size_t AddProximityClosures();
     double FootprintCell() const;  ///< [m] ground cells of the maps' footprints
