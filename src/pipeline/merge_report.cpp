@@ -13,7 +13,7 @@ std::string Metres(const std::optional<double>& value) { return value ? FormatNu
 std::string SessionRow(const MergeResult& result, std::size_t s) {
     const auto& session = result.sessions[s];
     int in_session = 0, cross = 0;
-    for (const auto& record : session.state.closures) in_session += record.method == "density" && record.accepted;
+    for (const auto& record : session.state.closures) in_session += CorrectsTrajectory(record) && record.accepted;
     for (const auto& c : result.cross) cross += c.accepted && (c.query_session == int(s) || c.ref_session == int(s));
     const bool connected = result.graph.connected[s] != 0;
     std::string row = "<tr><td><span style=\"display:inline-block;width:1em;height:1em;background:" + CssColor(SeriesColor(s)) +

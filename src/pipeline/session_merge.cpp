@@ -189,7 +189,7 @@ MergeResult MergeSessions(std::vector<SessionRun> sessions, const PipelineConfig
         chains.push_back(std::move(chain));
         node_of_map.push_back(NodeOfMap(state.maps));
         for (const auto& record : state.closures) {
-            if (record.method != "density" || !record.accepted) continue;
+            if (!CorrectsTrajectory(record) || !record.accepted) continue;
             closures.push_back({int(s), node_of_map[s].at(record.closure.query_id), int(s), node_of_map[s].at(record.closure.ref_id),
                                 record.refinement.T_query_ref, ClosureInformation(record.refinement, config.graph_noise),
                                 double(record.closure.num_inliers)});

@@ -102,7 +102,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
     for (std::size_t s = 0; s < result.sessions.size(); ++s) {
         const SessionRun& session = result.sessions[s];
         int in_session = 0, cross = 0;
-        for (const auto& record : session.state.closures) in_session += record.method == "density" && record.accepted;
+        for (const auto& record : session.state.closures) in_session += CorrectsTrajectory(record) && record.accepted;
         for (const auto& c : result.cross) cross += c.accepted && (c.query_session == int(s) || c.ref_session == int(s));
         nlohmann::json entry = {{"session", s},
                                 {"run", session.folder.string()},
@@ -162,7 +162,7 @@ void PrintMergeSummary(std::ostream& out, const MergeResult& result, const fs::p
     for (std::size_t s = 0; s < result.sessions.size(); ++s) {
         const auto& session = result.sessions[s];
         int in_session = 0, cross = 0;
-        for (const auto& record : session.state.closures) in_session += record.method == "density" && record.accepted;
+        for (const auto& record : session.state.closures) in_session += CorrectsTrajectory(record) && record.accepted;
         for (const auto& c : result.cross) cross += c.accepted && (c.query_session == int(s) || c.ref_session == int(s));
         char line[160];
         std::snprintf(line, sizeof(line), "%7zu  %9s  %4zu  %8d / %-7d  %14s  ", s, result.graph.connected[s] ? "yes" : "NO",
