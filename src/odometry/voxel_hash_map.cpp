@@ -29,6 +29,8 @@ std::array<Voxel, 27> MakeOffsets() {
     return offsets;
 }
 const std::array<Voxel, 27> kOffsets = MakeOffsets();
+/// Index in kOffsets of the first voxel of each ring (centre, 6 faces, 12 edges, 8 corners).
+constexpr std::size_t kFirstOfRing[4] = {0, 1, 7, 19};
 
 // When a voxel's points span a plane (scale-free, so the same for any voxel size and sensor):
 constexpr int kMinPlanePoints = 5;         ///< fewer points give no reliable normal
@@ -223,9 +225,18 @@ const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double
     const Eigen::Vector3d below2 = below.cwiseProduct(below);
     const Eigen::Vector3d above2 = above.cwiseProduct(above);
 
+    // Lower bounds of the edge and corner voxels' distances: the sums of the two and the three
+    // smallest per-axis distances to the nearer face. Once the best point is closer, no voxel of
+    // that ring can beat it, and the search ends there (the pruning below, without its 20 tests).
+    // Summed in the loop's order, so each bound is exactly <= every box2 of its ring.
+    const Eigen::Vector3d n2 = below2.cwiseMin(above2);
+    const double ring_bound[4] = {0.0, 0.0, std::min({n2[0] + n2[1], n2[0] + n2[2], n2[1] + n2[2]}),
+                                  (n2[0] + n2[1]) + n2[2]};
+
     double best2 = max_distance * max_distance;
     const Eigen::Vector3d* best = nullptr;
     for (std::size_t k = 0; k < kOffsets.size(); ++k) {
+        if ((k == kFirstOfRing[2] || k == kFirstOfRing[3]) && best2 <= ring_bound[k == kFirstOfRing[2] ? 2 : 3]) break;
         const Voxel& offset = kOffsets[k];
         double box2 = 0.0;
         for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
