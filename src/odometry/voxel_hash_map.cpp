@@ -99,10 +99,11 @@ void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
             point_shards_[i] = static_cast<std::uint32_t>(ShardOf(point_voxels_[i], num_shards));
         }
     });
+    shard_groups_.Build(point_shards_, num_shards);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_shards, 1), [&](const auto& range) {
         for (std::size_t s = range.begin(); s != range.end(); ++s) {
-            for (std::size_t i = 0; i < n; ++i) {
-                if (point_shards_[i] != s) continue;
+            for (const std::uint32_t* point = shard_groups_.begin(s); point != shard_groups_.end(s); ++point) {
+                const std::size_t i = *point;
                 const auto it = index_.find(point_voxels_[i]);
                 pending_[i] = it == index_.end();
                 if (!pending_[i]) TryAddToSlot(it->second, points[i]);

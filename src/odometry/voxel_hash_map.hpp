@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/voxel.hpp"
+#include "odometry/parallel_filter.hpp"
 
 namespace revisit {
 
@@ -94,6 +95,7 @@ class VoxelHashMap {
     // Buffers of AddPoints and RemoveFarFrom, kept between frames (no allocation per frame).
     std::vector<Voxel> point_voxels_;
     std::vector<std::uint32_t> point_shards_;
+    ShardGroups shard_groups_;
     std::vector<std::uint8_t> pending_;  ///< the point's voxel was not in the map
     std::vector<std::uint8_t> far_;      ///< per slot
 };
