@@ -216,7 +216,8 @@ void VoxelHashMap::Clear() {
 }
 
 template <typename SlotOf>
-const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const {
+const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of,
+                                            double* other2) const {
     const Eigen::Vector3d scaled = query * inv_voxel_size_;
     const Eigen::Vector3d floor = scaled.array().floor();
     const Voxel centre = floor.cast<int>();
@@ -236,24 +237,48 @@ const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double
 
     double best2 = max_distance * max_distance;
     const Eigen::Vector3d* best = nullptr;
+    // Second smallest distance of the visited points (points beyond max_distance count too), and
+    // the distance bounds of the voxels not visited.
+    double second2 = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < kOffsets.size(); ++k) {
-        if ((k == kFirstOfRing[2] || k == kFirstOfRing[3]) && best2 <= ring_bound[k == kFirstOfRing[2] ? 2 : 3]) break;
+        if ((k == kFirstOfRing[2] || k == kFirstOfRing[3])) {
+            const double bound = ring_bound[k == kFirstOfRing[2] ? 2 : 3];
+            if (best2 <= bound) {
+                second2 = std::min(second2, bound);
+                break;
+            }
+        }
         const Voxel& offset = kOffsets[k];
         double box2 = 0.0;
         for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
-        if (box2 >= best2) continue;
+        if (box2 >= best2) {
+            second2 = std::min(second2, box2);
+            continue;
+        }
         const std::int64_t slot = slot_of(centre, k);
         if (slot < 0) continue;
         const Eigen::Vector3d* begin = points_.data() + std::size_t(slot) * max_points_;
         const Eigen::Vector3d* end = begin + counts_[std::size_t(slot)];
+        if (other2 == nullptr) {
+            for (const Eigen::Vector3d* p = begin; p != end; ++p) {
+                const double d2 = (*p - query).squaredNorm();
+                if (d2 < best2) {
+                    best2 = d2;
+                    best = p;
+                }
+            }
+            continue;
+        }
         for (const Eigen::Vector3d* p = begin; p != end; ++p) {
             const double d2 = (*p - query).squaredNorm();
+            second2 = std::min(second2, std::max(best2, d2));  // a tie leaves second2 = best2: no reuse
             if (d2 < best2) {
                 best2 = d2;
                 best = p;
             }
         }
     }
+    if (other2 != nullptr) *other2 = second2;
     return best;
 }
 
@@ -266,7 +291,19 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
 
 const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance,
                                                  Neighbourhood& cache) const {
-    return Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
+    if (cache.nearest != nullptr && cache.max_distance == max_distance) {
+        // The same unique nearest point as the last search while the query stays in its voxel and
+        // moved less than half the gap to any other point (see Neighbourhood). The margin covers
+        // the rounding of the distances (relative 1e-16, far below a micrometre per voxel).
+        const double moved = (query - cache.searched_at).norm() + 1e-6 * voxel_size_;
+        const double reach = cache.nearest_distance + moved;
+        if (reach < cache.other_distance - moved && reach < max_distance &&
+            VoxelOfInverse(query, inv_voxel_size_) == cache.centre) {
+            return cache.nearest;
+        }
+    }
+    double other2 = 0.0;
+    const Eigen::Vector3d* nearest = Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
         if (centre != cache.centre) {  // the query moved to another voxel: forget the old neighbours
             cache.centre = centre;
             cache.slots.fill(Neighbourhood::kUnknown);
@@ -277,7 +314,13 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
             cache.slots[k] = it == index_.end() ? -1 : std::int32_t(it->second);
         }
         return cache.slots[k];
-    });
+    }, &other2);
+    cache.searched_at = query;
+    cache.nearest = nearest;
+    cache.nearest_distance = nearest ? (*nearest - query).norm() : 0.0;
+    cache.other_distance = std::sqrt(other2);
+    cache.max_distance = max_distance;
+    return nearest;
 }
 
 std::size_t VoxelHashMap::NumPoints() const {
