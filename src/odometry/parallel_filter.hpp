@@ -24,7 +24,7 @@ std::size_t NumShards(std::size_t n);
 
 /// Indices 0..n-1 grouped by shard, each group in increasing order (a stable counting sort in
 /// parallel chunks). A shard's task then walks only its own points: testing every point's shard
-/// instead fails unpredictably for half of them at two shards, and cost more than the hashing.
+/// instead fails unpredictably (for half of them at two shards).
 class ShardGroups {
   public:
     /// Groups by `shards[i]` < `num_shards`; keeps its buffers for the next call.
