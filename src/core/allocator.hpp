@@ -9,4 +9,8 @@ namespace revisit {
 /// -> 1.3 ms, `revisit bench --only tree`). Call once, early in main.
 void TuneAllocator();
 
+/// Returns the heap's free pages to the system (what the top pad and freed blocks keep resident), so
+/// that a phase that follows peaks from the live data alone. Milliseconds; between phases, not per item.
+void ReleaseFreeMemory();
+
 }  // namespace revisit

@@ -17,6 +17,16 @@ struct VoxelHash {
     }
 };
 
+/// VoxelHash with its bits mixed into the low ones, which power-of-two tables (tsl::robin_*) use as
+/// the bucket: VoxelHash's low bits follow the coordinates' parities. For sets only looked up or
+/// walked in an order of their own.
+struct MixedVoxelHash {
+    std::size_t operator()(const Voxel& voxel) const {
+        const std::uint64_t h = static_cast<std::uint64_t>(VoxelHash{}(voxel)) * 0x9E3779B97F4A7C15ull;
+        return static_cast<std::size_t>(h >> 32);
+    }
+};
+
 /// Integer voxel coordinates of a point for a voxel edge `voxel_size` [m].
 inline Voxel VoxelOf(const Eigen::Vector3d& point, double voxel_size) {
     return (point / voxel_size).array().floor().cast<int>();

@@ -22,6 +22,22 @@ inline std::size_t ShardOf(const Voxel& voxel, std::size_t num_shards) {
 /// Shards for `n` items: one per available thread, one for small inputs (not worth the tasks).
 std::size_t NumShards(std::size_t n);
 
+/// Indices 0..n-1 grouped by shard, each group in increasing order (a stable counting sort in
+/// parallel chunks). A shard's task then walks only its own points: testing every point's shard
+/// instead fails unpredictably (for half of them at two shards).
+class ShardGroups {
+  public:
+    /// Groups by `shards[i]` < `num_shards`; keeps its buffers for the next call.
+    void Build(const std::vector<std::uint32_t>& shards, std::size_t num_shards);
+    const std::uint32_t* begin(std::size_t shard) const { return order_.data() + group_begin_[shard]; }
+    const std::uint32_t* end(std::size_t shard) const { return order_.data() + group_begin_[shard + 1]; }
+
+  private:
+    std::vector<std::uint32_t> order_;       ///< point indices, shard by shard
+    std::vector<std::size_t> positions_;     ///< per (chunk, shard): count, then next output position
+    std::vector<std::size_t> group_begin_;   ///< per shard, and the end
+};
+
 /// Keeps the buffers of the filters between frames: after the first frames nothing is allocated.
 class ParallelFilter {
   public:
@@ -42,6 +58,7 @@ class ParallelFilter {
     std::vector<std::uint8_t> keep_;                           ///< per input point
     std::vector<Voxel> voxels_;                                ///< per input point
     std::vector<std::uint32_t> shards_;                        ///< per input point
+    ShardGroups groups_;                                       ///< the points of each shard
     std::vector<std::size_t> chunk_offsets_;                   ///< output position of each chunk
     std::vector<tsl::robin_set<Voxel, VoxelHash>> seen_;       ///< per shard
 };

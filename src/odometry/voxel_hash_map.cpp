@@ -29,6 +29,8 @@ std::array<Voxel, 27> MakeOffsets() {
     return offsets;
 }
 const std::array<Voxel, 27> kOffsets = MakeOffsets();
+/// Index in kOffsets of the first voxel of each ring (centre, 6 faces, 12 edges, 8 corners).
+constexpr std::size_t kFirstOfRing[4] = {0, 1, 7, 19};
 
 // When a voxel's points span a plane (scale-free, so the same for any voxel size and sensor):
 constexpr int kMinPlanePoints = 5;         ///< fewer points give no reliable normal
@@ -97,10 +99,11 @@ void VoxelHashMap::AddPoints(const std::vector<Eigen::Vector3d>& points) {
             point_shards_[i] = static_cast<std::uint32_t>(ShardOf(point_voxels_[i], num_shards));
         }
     });
+    shard_groups_.Build(point_shards_, num_shards);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_shards, 1), [&](const auto& range) {
         for (std::size_t s = range.begin(); s != range.end(); ++s) {
-            for (std::size_t i = 0; i < n; ++i) {
-                if (point_shards_[i] != s) continue;
+            for (const std::uint32_t* point = shard_groups_.begin(s); point != shard_groups_.end(s); ++point) {
+                const std::size_t i = *point;
                 const auto it = index_.find(point_voxels_[i]);
                 pending_[i] = it == index_.end();
                 if (!pending_[i]) TryAddToSlot(it->second, points[i]);
@@ -213,7 +216,8 @@ void VoxelHashMap::Clear() {
 }
 
 template <typename SlotOf>
-const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const {
+const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of,
+                                            double* other2) const {
     const Eigen::Vector3d scaled = query * inv_voxel_size_;
     const Eigen::Vector3d floor = scaled.array().floor();
     const Voxel centre = floor.cast<int>();
@@ -223,25 +227,58 @@ const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double
     const Eigen::Vector3d below2 = below.cwiseProduct(below);
     const Eigen::Vector3d above2 = above.cwiseProduct(above);
 
+    // Lower bounds of the edge and corner voxels' distances: the sums of the two and the three
+    // smallest per-axis distances to the nearer face. Once the best point is closer, no voxel of
+    // that ring can beat it, and the search ends there (the pruning below, without its 20 tests).
+    // Summed in the loop's order, so each bound is exactly <= every box2 of its ring.
+    const Eigen::Vector3d n2 = below2.cwiseMin(above2);
+    const double ring_bound[4] = {0.0, 0.0, std::min({n2[0] + n2[1], n2[0] + n2[2], n2[1] + n2[2]}),
+                                  (n2[0] + n2[1]) + n2[2]};
+
     double best2 = max_distance * max_distance;
     const Eigen::Vector3d* best = nullptr;
+    // Second smallest distance of the visited points (points beyond max_distance count too), and
+    // the distance bounds of the voxels not visited.
+    double second2 = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < kOffsets.size(); ++k) {
+        if ((k == kFirstOfRing[2] || k == kFirstOfRing[3])) {
+            const double bound = ring_bound[k == kFirstOfRing[2] ? 2 : 3];
+            if (best2 <= bound) {
+                second2 = std::min(second2, bound);
+                break;
+            }
+        }
         const Voxel& offset = kOffsets[k];
         double box2 = 0.0;
         for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
-        if (box2 >= best2) continue;
+        if (box2 >= best2) {
+            second2 = std::min(second2, box2);
+            continue;
+        }
         const std::int64_t slot = slot_of(centre, k);
         if (slot < 0) continue;
         const Eigen::Vector3d* begin = points_.data() + std::size_t(slot) * max_points_;
         const Eigen::Vector3d* end = begin + counts_[std::size_t(slot)];
+        if (other2 == nullptr) {
+            for (const Eigen::Vector3d* p = begin; p != end; ++p) {
+                const double d2 = (*p - query).squaredNorm();
+                if (d2 < best2) {
+                    best2 = d2;
+                    best = p;
+                }
+            }
+            continue;
+        }
         for (const Eigen::Vector3d* p = begin; p != end; ++p) {
             const double d2 = (*p - query).squaredNorm();
+            second2 = std::min(second2, std::max(best2, d2));  // a tie leaves second2 = best2: no reuse
             if (d2 < best2) {
                 best2 = d2;
                 best = p;
             }
         }
     }
+    if (other2 != nullptr) *other2 = second2;
     return best;
 }
 
@@ -254,7 +291,19 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
 
 const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, double max_distance,
                                                  Neighbourhood& cache) const {
-    return Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
+    if (cache.nearest != nullptr && cache.max_distance == max_distance) {
+        // The same unique nearest point as the last search while the query stays in its voxel and
+        // moved less than half the gap to any other point (see Neighbourhood). The margin covers
+        // the rounding of the distances (relative 1e-16, far below a micrometre per voxel).
+        const double moved = (query - cache.searched_at).norm() + 1e-6 * voxel_size_;
+        const double reach = cache.nearest_distance + moved;
+        if (reach < cache.other_distance - moved && reach < max_distance &&
+            VoxelOfInverse(query, inv_voxel_size_) == cache.centre) {
+            return cache.nearest;
+        }
+    }
+    double other2 = 0.0;
+    const Eigen::Vector3d* nearest = Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
         if (centre != cache.centre) {  // the query moved to another voxel: forget the old neighbours
             cache.centre = centre;
             cache.slots.fill(Neighbourhood::kUnknown);
@@ -265,7 +314,13 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
             cache.slots[k] = it == index_.end() ? -1 : std::int32_t(it->second);
         }
         return cache.slots[k];
-    });
+    }, &other2);
+    cache.searched_at = query;
+    cache.nearest = nearest;
+    cache.nearest_distance = nearest ? (*nearest - query).norm() : 0.0;
+    cache.other_distance = std::sqrt(other2);
+    cache.max_distance = max_distance;
+    return nearest;
 }
 
 std::size_t VoxelHashMap::NumPoints() const {

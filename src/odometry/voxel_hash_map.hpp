@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/voxel.hpp"
+#include "odometry/parallel_filter.hpp"
 
 namespace revisit {
 
@@ -42,12 +43,24 @@ class VoxelHashMap {
     /// The slots of the 27 voxels around one query voxel, kept between ICP iterations (issue 19): while
     /// a point stays in the same voxel, its neighbours are not looked up again. Valid while the map
     /// does not change; reset it (a default one) before each registration.
+    ///
+    /// It also keeps the last search's answer: where it was asked, the nearest point's distance and a
+    /// lower bound on every other point's. A query that moved by d from there, within the same voxel,
+    /// has the same unique nearest point while nearest + d < other - d and nearest + d < max_distance
+    /// (triangle inequality), so it is answered without a search: ICP's late iterations move points by
+    /// millimetres, far less than the gaps between map points.
     struct Neighbourhood {
         static constexpr std::int32_t kUnknown = -2;  ///< not looked up yet
         Voxel centre = Voxel::Constant(std::numeric_limits<int>::min());
         std::array<std::int32_t, 27> slots{};  ///< per neighbour offset, -1: no such voxel
+        Eigen::Vector3d searched_at = Eigen::Vector3d::Zero();  ///< query of the last search
+        const Eigen::Vector3d* nearest = nullptr;               ///< its answer (nullptr: reuse nothing)
+        double nearest_distance = 0.0;                          ///< [m] from searched_at to *nearest
+        double other_distance = 0.0;  ///< [m] no other point of the 27 voxels is closer to searched_at
+        double max_distance = 0.0;    ///< [m] of the last search
     };
-    /// FindNearest with `cache` for this query's neighbourhood: the same result, fewer hash lookups.
+    /// FindNearest with `cache` for this query's neighbourhood: the same result, fewer hash lookups
+    /// and searches.
     const Eigen::Vector3d* FindNearest(const Eigen::Vector3d& query, double max_distance, Neighbourhood& cache) const;
 
     /// Keep a plane normal per voxel (point-to-plane ICP): after each AddPoints, the voxels whose
@@ -69,8 +82,11 @@ class VoxelHashMap {
 
   private:
     /// FindNearest over the neighbour voxels `slot_of(centre, k)` gives (-1: none), k in visiting order.
+    /// `other2`, when given, gets a lower bound on the squared distance [m^2] of every point of the
+    /// 27 voxels other than the one returned (infinity when there is none).
     template <typename SlotOf>
-    const Eigen::Vector3d* Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of) const;
+    const Eigen::Vector3d* Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of,
+                                  double* other2 = nullptr) const;
     /// One point, as the serial definition adds it (a new voxel gets the next slot).
     void AddPoint(const Eigen::Vector3d& point);
     void AddPoint(const Eigen::Vector3d& point, const Voxel& voxel);
@@ -94,6 +110,7 @@ class VoxelHashMap {
     // Buffers of AddPoints and RemoveFarFrom, kept between frames (no allocation per frame).
     std::vector<Voxel> point_voxels_;
     std::vector<std::uint32_t> point_shards_;
+    ShardGroups shard_groups_;
     std::vector<std::uint8_t> pending_;  ///< the point's voxel was not in the map
     std::vector<std::uint8_t> far_;      ///< per slot
 };

@@ -3,7 +3,7 @@
 /// one point per voxel so that kilometres of driving stay a few million points.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <unordered_set>
+#include <tsl/robin_set.h>
 #include <vector>
 
 #include "optimization/point_grid.hpp"
@@ -21,16 +21,18 @@ class GlobalMapBuilder {
         for (const auto& point : points_in_node) Insert(T_world_node * point.template cast<double>());
     }
 
-    /// The map's points in the world frame, in insertion order.
-    const std::vector<Eigen::Vector3d>& Points() const { return points_; }
+    /// The map's points in the world frame, in insertion order (in single precision, as written).
+    const std::vector<Eigen::Vector3f>& Points() const { return points_; }
     std::size_t size() const { return points_.size(); }
 
   private:
     void Insert(const Eigen::Vector3d& point_in_world);
 
     double voxel_size_;
-    std::unordered_set<Eigen::Vector3i, VoxelHash> occupied_;
-    std::vector<Eigen::Vector3d> points_;
+    /// Open addressing, filled up to 90%: the demo's 0.7 M voxels take 17 MB (a node set: 41 MB).
+    /// Building the map is the chain's peak of memory (issue 19).
+    tsl::robin_set<Voxel, MixedVoxelHash> occupied_;
+    std::vector<Eigen::Vector3f> points_;
 };
 
 }  // namespace revisit

@@ -9,11 +9,8 @@ namespace revisit {
 std::size_t WriteGlobalMap(const RunFolder& run, const RunState& state, double voxel_size) {
     GlobalMapBuilder builder(voxel_size);
     for (const auto& map : state.maps) builder.Add(ReadMapPoints(run, map.id), map.T_world_map_corrected);
-    std::vector<Eigen::Vector3f> points;
-    points.reserve(builder.size());
-    for (const auto& p : builder.Points()) points.push_back(p.cast<float>());
-    SavePly(run.corrected_map(), points);
-    return points.size();
+    SavePly(run.corrected_map(), builder.Points());
+    return builder.size();
 }
 
 }  // namespace revisit

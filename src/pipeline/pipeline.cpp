@@ -9,6 +9,7 @@
 #include <iomanip>
 
 #include "closures/database_io.hpp"
+#include "core/allocator.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "io/prefetch_reader.hpp"
@@ -259,6 +260,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     for (const auto& [stage, timer] : timings) state.timings[stage] = timer;
 
     auto start = Clock::now();
+    ReleaseFreeMemory();  // the global map is the chain's peak of memory: build it on a trimmed heap
     SaveDatabase(pipeline.detector(), run.database());
     WriteGlobalMap(run, state, config.output.global_map_voxel);
     time("write", start);

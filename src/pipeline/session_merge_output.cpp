@@ -130,11 +130,8 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
         }
         sessions.push_back(entry);
     }
-    std::vector<Eigen::Vector3f> points;
-    points.reserve(joint_map.size());
-    for (const auto& p : joint_map.Points()) points.push_back(p.cast<float>());
-    SavePly(out / "map_joint.ply", points);
-    result.joint_map_points = points.size();
+    SavePly(out / "map_joint.ply", joint_map.Points());
+    result.joint_map_points = joint_map.size();
     WriteCrossClosures(out / "cross_closures.csv", result);
     WriteFileAtomically(out / "sessions.svg", SessionsSvg(result));
     WriteMergeReport(out, result);
@@ -152,7 +149,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
         {"connected_sessions", connected},
         {"cross_closures", {{"candidates", candidates}, {"verified", verified}, {"accepted", accepted}}},
         {"joint_map", "map_joint.ply"},
-        {"joint_map_points", points.size()},
+        {"joint_map_points", joint_map.size()},
         {"graph_iterations", result.graph.iterations}};
     WriteFileAtomically(out / "sessions.json", [&summary](std::ostream& o) { o << std::setw(2) << summary << '\n'; });
 }

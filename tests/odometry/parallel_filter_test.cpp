@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -33,8 +35,19 @@ auto WithThreads(int threads, F&& f) {
     return f();
 }
 
-TEST(ParallelFilter, CropAndDownsampleEqualTheSerialDefinitionsAtAnyThreadCount) {
-    const auto scan = ScanLike(3);
+/// The points of `cloud` in sweep order (by azimuth), as a spinning sensor delivers them: consecutive
+/// points then often share a voxel, which the downsampling's shortcut relies on.
+std::vector<Eigen::Vector3f> InSweepOrder(std::vector<Eigen::Vector3f> cloud) {
+    std::stable_sort(cloud.begin(), cloud.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+        return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x());
+    });
+    return cloud;
+}
+
+class ParallelFilterOrder : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ParallelFilterOrder, CropAndDownsampleEqualTheSerialDefinitionsAtAnyThreadCount) {
+    const auto scan = GetParam() ? InSweepOrder(ScanLike(3)) : ScanLike(3);
     std::vector<std::size_t> serial_kept;
     const auto serial_cropped = CropRange(scan, 5.0, 100.0, &serial_kept);
     const auto serial_fine = VoxelDownsample(serial_cropped, 0.5);
@@ -58,6 +71,7 @@ TEST(ParallelFilter, CropAndDownsampleEqualTheSerialDefinitionsAtAnyThreadCount)
         });
     }
 }
+INSTANTIATE_TEST_SUITE_P(RandomAndSweepOrder, ParallelFilterOrder, ::testing::Bool());
 
 TEST(VoxelHashMap, AddingABatchEqualsAddingPointByPointAtAnyThreadCount) {
     const auto scan = ScanLike(5);
@@ -83,6 +97,31 @@ TEST(VoxelHashMap, AddingABatchEqualsAddingPointByPointAtAnyThreadCount) {
             EXPECT_EQ(map.Points(), reference.Points()) << threads << " threads";  // same slots, same order
             return 0;
         });
+    }
+}
+
+TEST(VoxelHashMap, NeighbourhoodCacheReusesTheNearestPointOnlyWhenItCannotHaveChanged) {
+    // Map points on a 0.25 m lattice (many exact ties between neighbours) and queries creeping by
+    // 0-3 mm per step, as in ICP's late iterations: most answers come from the cache, and each
+    // must be the very point (first of equals included) that a full search returns.
+    std::vector<Eigen::Vector3d> lattice;
+    for (int x = -20; x < 20; ++x)
+        for (int y = -20; y < 20; ++y)
+            for (int z = -4; z < 4; ++z) lattice.emplace_back(0.25 * x, 0.25 * y, 0.25 * z);
+    VoxelHashMap map(1.0, 20);
+    map.AddPoints(lattice);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> position(-4.0, 4.0), height(-0.9, 0.9), step(-0.0017, 0.0017);
+    std::vector<Eigen::Vector3d> queries;
+    for (int i = 0; i < 2000; ++i) queries.emplace_back(position(rng), position(rng), height(rng));
+    for (int i = 0; i < 200; ++i) queries.emplace_back(0.125 + 0.25 * (i % 8), 0.0, 0.0);  // midway between two
+    std::vector<VoxelHashMap::Neighbourhood> caches(queries.size());
+    for (int iteration = 0; iteration < 20; ++iteration) {
+        for (std::size_t i = 0; i < queries.size(); ++i) {
+            if (i < 2000) queries[i] += Eigen::Vector3d(step(rng), step(rng), step(rng));
+            const Eigen::Vector3d* expected = map.FindNearest(queries[i], 0.3);
+            ASSERT_EQ(map.FindNearest(queries[i], 0.3, caches[i]), expected) << "query " << i << " iteration " << iteration;
+        }
     }
 }
 

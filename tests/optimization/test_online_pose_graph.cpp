@@ -188,7 +188,9 @@ TEST(GlobalMapBuilder, PlacesLocalMapsAtTheirNodesOnePointPerVoxel) {
         for (const auto& p : wall_in_world) wall_in_node.push_back((T_world_node.inverse() * p.cast<double>()).cast<float>());
         builder.Add(wall_in_node, T_world_node);
     }
-    EXPECT_EQ(builder.size(), VoxelDownsample(builder.Points(), 0.5).size());  // one point per voxel
+    std::vector<Eigen::Vector3d> placed;
+    for (const auto& p : builder.Points()) placed.push_back(p.cast<double>());
+    EXPECT_EQ(builder.size(), VoxelDownsample(placed, 0.5).size());  // one point per voxel
     EXPECT_GE(builder.size(), 20u * 4u);
     EXPECT_LE(builder.size(), 20u * 4u + 20u);  // a 10 m x 2 m wall: 20 x 4 voxels, plus rounding at the map border
     for (const auto& p : builder.Points()) EXPECT_NEAR(p.y(), 5.2, 1e-4);
