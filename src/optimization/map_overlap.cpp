@@ -49,13 +49,13 @@ std::vector<PredictedOverlap> PredictOverlaps(const std::vector<std::vector<Eige
             const Cell cell = CellOf(w.x(), w.y(), inv_cell);
             if (cells.insert(cell).second) world[m].push_back(cell);
         }
-        for (const Cell cell : world[m]) maps_of_cell[cell].push_back(int(m));  // ascending map ids per cell
+        for (const Cell& cell : world[m]) maps_of_cell[cell].push_back(int(m));  // ascending map ids per cell
     }
     std::vector<PredictedOverlap> pairs;
     std::vector<int> shared(n, 0);
     for (std::size_t q = 1; q < n; ++q) {
         std::fill(shared.begin(), shared.begin() + std::ptrdiff_t(q), 0);
-        for (const Cell cell : world[q]) {
+        for (const Cell& cell : world[q]) {
             for (const int r : maps_of_cell.at(cell)) {
                 if (r >= int(q)) break;
                 ++shared[std::size_t(r)];
