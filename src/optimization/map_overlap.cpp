@@ -25,9 +25,10 @@ std::vector<Eigen::Vector2d> MapFootprint(const std::vector<Eigen::Vector3f>& po
     tsl::robin_set<Cell, VoxelHash> seen;
     std::vector<Eigen::Vector2d> centres;
     for (const auto& p : points_in_map) {
-        const double fx = std::floor(double(p.x()) * inv_cell), fy = std::floor(double(p.y()) * inv_cell);
-        if (!p.allFinite() || !seen.insert(CellOf(p.x(), p.y(), inv_cell)).second) continue;
-        centres.emplace_back((fx + 0.5) * cell_size, (fy + 0.5) * cell_size);  // first-seen order: deterministic
+        if (!p.allFinite()) continue;
+        const Cell cell = CellOf(p.x(), p.y(), inv_cell);
+        if (!seen.insert(cell).second) continue;
+        centres.emplace_back((cell.x() + 0.5) * cell_size, (cell.y() + 0.5) * cell_size);  // first-seen order: deterministic
     }
     return centres;
 }
