@@ -12,8 +12,8 @@ std::string Metres(const std::optional<double>& value) { return value ? FormatNu
 /// One sessions-table row: a swatch in the session's sessions.svg colour, "NO" marked when unconnected.
 std::string SessionRow(const MergeResult& result, std::size_t s) {
     const auto& session = result.sessions[s];
-    int in_session = 0, cross = 0;
-    for (const auto& record : session.state.closures) in_session += CorrectsTrajectory(record) && record.accepted;
+    const int in_session = int(session.state.NumAccepted());
+    int cross = 0;
     for (const auto& c : result.cross) cross += c.accepted && (c.query_session == int(s) || c.ref_session == int(s));
     const bool connected = result.graph.connected[s] != 0;
     std::string row = "<tr><td><span style=\"display:inline-block;width:1em;height:1em;background:" + CssColor(SeriesColor(s)) +

@@ -25,7 +25,7 @@ std::vector<int> MapOfScan(const std::vector<MapRecordSummary>& maps, std::size_
 
 std::size_t RunState::NumAccepted() const {
     std::size_t n = 0;
-    for (const auto& c : closures) n += c.accepted;
+    for (const auto& c : closures) n += CorrectsTrajectory(c) && c.accepted;
     return n;
 }
 

@@ -81,6 +81,7 @@ struct RunState {
     std::size_t peak_rss_kb = 0;
 
     bool has_reference() const { return !reference.empty() && reference.size() == odometry.size(); }
+    /// Closures in the final pose graph (the detector's and the proximity pass's).
     std::size_t NumAccepted() const;
 };
 

@@ -101,8 +101,8 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
     std::size_t connected = 0;
     for (std::size_t s = 0; s < result.sessions.size(); ++s) {
         const SessionRun& session = result.sessions[s];
-        int in_session = 0, cross = 0;
-        for (const auto& record : session.state.closures) in_session += CorrectsTrajectory(record) && record.accepted;
+        const int in_session = int(session.state.NumAccepted());
+        int cross = 0;
         for (const auto& c : result.cross) cross += c.accepted && (c.query_session == int(s) || c.ref_session == int(s));
         nlohmann::json entry = {{"session", s},
                                 {"run", session.folder.string()},
@@ -158,8 +158,8 @@ void PrintMergeSummary(std::ostream& out, const MergeResult& result, const fs::p
     out << "session  connected  maps  closures(in/cross)  APE common [m]  run\n";
     for (std::size_t s = 0; s < result.sessions.size(); ++s) {
         const auto& session = result.sessions[s];
-        int in_session = 0, cross = 0;
-        for (const auto& record : session.state.closures) in_session += CorrectsTrajectory(record) && record.accepted;
+        const int in_session = int(session.state.NumAccepted());
+        int cross = 0;
         for (const auto& c : result.cross) cross += c.accepted && (c.query_session == int(s) || c.ref_session == int(s));
         char line[160];
         std::snprintf(line, sizeof(line), "%7zu  %9s  %4zu  %8d / %-7d  %14s  ", s, result.graph.connected[s] ? "yes" : "NO",
