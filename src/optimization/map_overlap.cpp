@@ -10,8 +10,8 @@
 namespace revisit {
 namespace {
 
-/// A ground cell as a voxel at height 0: the core's voxel hash mixes both coordinates (a plain
-/// integer key would leave robin_map's low-bit buckets to one coordinate and make it grow without end).
+/// A ground cell as a voxel at height 0, hashed with MixedVoxelHash: robin tables bucket by the low
+/// bits (a plain integer key left them to one coordinate and made the table grow without end).
 using Cell = Voxel;
 
 Cell CellOf(double x, double y, double inv_cell) {
@@ -22,7 +22,7 @@ Cell CellOf(double x, double y, double inv_cell) {
 
 std::vector<Eigen::Vector2d> MapFootprint(const std::vector<Eigen::Vector3f>& points_in_map, double cell_size) {
     const double inv_cell = 1.0 / cell_size;
-    tsl::robin_set<Cell, VoxelHash> seen;
+    tsl::robin_set<Cell, MixedVoxelHash> seen;
     std::vector<Eigen::Vector2d> centres;
     for (const auto& p : points_in_map) {
         if (!p.allFinite()) continue;
@@ -40,10 +40,10 @@ std::vector<PredictedOverlap> PredictOverlaps(const std::vector<std::vector<Eige
     const std::size_t n = std::min(footprints.size(), T_world_map.size());
     // Each map's footprint in the world (a moved cell centre lands in one cell; two centres may share one).
     std::vector<std::vector<Cell>> world(n);
-    tsl::robin_map<Cell, std::vector<int>, VoxelHash> maps_of_cell;
+    tsl::robin_map<Cell, std::vector<int>, MixedVoxelHash> maps_of_cell;
     for (std::size_t m = 0; m < n; ++m) {
         const Eigen::Isometry3d& T = T_world_map[m];
-        tsl::robin_set<Cell, VoxelHash> cells;
+        tsl::robin_set<Cell, MixedVoxelHash> cells;
         for (const auto& c : footprints[m]) {
             const Eigen::Vector3d w = T * Eigen::Vector3d(c.x(), c.y(), 0.0);
             if (!w.allFinite()) continue;

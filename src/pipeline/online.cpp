@@ -206,6 +206,8 @@ std::size_t ClosurePipeline::AddProximityClosures() {
     const auto pairs = PredictOverlaps(footprints_, corrected_nodes_, FootprintCell(), p.min_overlap, p.max_per_map,
                                        [&](int query, int ref) { return query == ref + 1 || done.count({query, ref}) > 0; });
     std::size_t verified = 0;
+    std::vector<Eigen::Vector3f> query_points;  // pairs come grouped by query map: read each once
+    int query_loaded = -1;
     for (const auto& pair : pairs) {
         ClosureRecord record;
         record.method = "proximity";
@@ -215,7 +217,11 @@ std::size_t ClosurePipeline::AddProximityClosures() {
         closure.query_scans = {maps_[std::size_t(pair.query)].first_scan, maps_[std::size_t(pair.query)].last_scan};
         closure.ref_scans = {maps_[std::size_t(pair.ref)].first_scan, maps_[std::size_t(pair.ref)].last_scan};
         closure.T_query_ref = (corrected_nodes_[std::size_t(pair.query)].inverse() * corrected_nodes_[std::size_t(pair.ref)]).matrix();
-        Refine(record, store_->Get(pair.query), detector_.maps()[std::size_t(pair.query)], confirm, false);
+        if (pair.query != query_loaded) {
+            query_points = store_->Get(pair.query);
+            query_loaded = pair.query;
+        }
+        Refine(record, query_points, detector_.maps()[std::size_t(pair.query)], confirm, false);
         verified += record.refinement.accepted;
         closures_.push_back(std::move(record));
     }
