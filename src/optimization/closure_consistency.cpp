@@ -221,6 +221,7 @@ std::vector<std::size_t> MaximumClique(const std::vector<std::vector<char>>& adj
 
 void ClosureConsistency::Add(const ConsistencyClosure& closure, const ConsistencyOdometry& odometry, bool may_displace) {
     const std::size_t v = closures_.size();
+    may_displace_.push_back(may_displace);
     odometry_chi2_.push_back(odometry.one_chain ? OdometryChi2(closure, odometry, noise_, config_) : 0.0);
     const bool fits_odometry = odometry_chi2_.back() <= config_.odometry_chi2_threshold;
     std::vector<char> row(v + 1, 1);
@@ -271,6 +272,26 @@ double ClosureConsistency::TieWeight(std::size_t k) const {
     // The score decides between sets of equal size; between equal scores (a few inliers each) the set
     // that agrees better with the odometry: the fraction stays below one inlier.
     return closures_[k].score + 1.0 / (1.0 + odometry_chi2_[k]);
+}
+
+std::optional<double> ClosureConsistency::ObservedRotationRate(const ConsistencyOdometry& odometry,
+                                                               std::size_t min_closures) const {
+    std::vector<double> rates;  // per closure of the set: [rad/m]
+    for (std::size_t k = 0; k < closures_.size(); ++k) {
+        const auto& c = closures_[k];
+        const double travel = Travel(odometry, c.ref_node, c.query_node);
+        if (!in_set_[k] || travel <= 0.0) continue;
+        const Eigen::AngleAxisd cycle((c.T_query_ref * Odometry(odometry, c.ref_node, c.query_node)).linear());
+        rates.push_back(std::abs(cycle.angle()) / travel);
+    }
+    if (rates.empty() || rates.size() < min_closures) return std::nullopt;
+    return *std::max_element(rates.begin(), rates.end());
+}
+
+ClosureConsistency ClosureConsistency::Rechecked(const OdometryNoise& noise, const ConsistencyOdometry& odometry) const {
+    ClosureConsistency rechecked(config_, noise);
+    for (std::size_t k = 0; k < closures_.size(); ++k) rechecked.Add(closures_[k], odometry, may_displace_[k] != 0);
+    return rechecked;
 }
 
 std::vector<char> ClosureConsistency::ConsistentSet() const {

@@ -155,6 +155,14 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("consistency.closure_sigma_rotation_deg", &pcm.closure_sigma_rotation_deg, "deg", "same, rotation", Range{1e-4, 180});
     s.Add("consistency.exact_max_steps", &pcm.exact_max_steps, "",
           "maximum-clique search budget (exact below it; past it the best set found is kept)", Range{1, 1000000000});
+    s.Add("consistency.calibrate_drift", &pcm.calibrate_drift, "",
+          "at the end, lower graph.odometry_rotation_per_m to calibration_factor x the largest rotation drift per metre "
+          "of the consistent closures (never raise it; skipped when the rate is given explicitly) and check them again");
+    s.Add("consistency.calibration_min_closures", &pcm.calibration_min_closures, "",
+          "consistent closures needed before their drift is trusted", Range{1, 1000000});
+    s.Add("consistency.calibration_factor", &pcm.calibration_factor, "", "margin over the largest measured drift", Range{1, 1000});
+    s.Add("consistency.calibration_min_rotation_per_m", &pcm.calibration_min_rotation_per_m, "rad/m",
+          "the calibrated rate never goes below this (the 3D default rate)", Range{0, 1});
     auto& prox = c.proximity;
     s.Add("proximity.enabled", &prox.enabled, "",
           "after the final optimization, register maps the corrected poses lay over each other (README: closures from the corrected map)");

@@ -94,6 +94,7 @@ PipelineUpdate ClosurePipeline::AddScan(std::size_t scan_index, const std::vecto
 PipelineUpdate ClosurePipeline::Finish() {
     PipelineUpdate update;
     if (auto last = mapper_.Finish()) update = ProcessMap(*last);
+    CalibrateDrift();
     Optimize(true);
     for (int round = 0; config_.proximity.enabled && round < config_.proximity.rounds; ++round) {
         if (AddProximityClosures() == 0) break;
@@ -301,6 +302,32 @@ void ClosurePipeline::ApplyConsistency() {
         loop_edge_closure_.push_back(verified_closure_[k]);
     }
     Time("consistency", MillisecondsSince(start));
+}
+
+void ClosurePipeline::CalibrateDrift() {
+    // The configured rate is a prior for a sensor family (2D lasers: 2e-3 rad/m, auto_settings.cpp); the
+    // closures the check kept measure this odometry's drift. A repetitive world's shifted twin (a room one
+    // along) agrees with the true closures only under a loose rate, so the measured one decides.
+    const auto& c = config_.consistency;
+    if (!c.enabled || !c.calibrate_drift || config_.explicit_keys.count("graph.odometry_rotation_per_m") != 0) return;
+    const ConsistencyOdometry odometry{&nodes_, &node_travel_, &node_position_integral_};
+    const auto observed = consistency_.ObservedRotationRate(odometry, std::size_t(std::max(c.calibration_min_closures, 1)));
+    if (!observed) return;
+    const double configured = config_.graph_noise.odometry_rotation_per_m;
+    const double calibrated = std::max(c.calibration_min_rotation_per_m, c.calibration_factor * *observed);
+    if (calibrated >= configured) return;
+    const auto start = std::chrono::steady_clock::now();
+    OdometryNoise noise = consistency_.noise();
+    noise.rotation_per_m = calibrated;
+    consistency_ = consistency_.Rechecked(noise, odometry);
+    config_.graph_noise.odometry_rotation_per_m = calibrated;
+    Time("consistency", MillisecondsSince(start));
+    ApplyConsistency();
+    char reason[160];
+    std::snprintf(reason, sizeof(reason), "drift calibration: the consistent closures show at most %.2g rad/m (x %.3g)",
+                  *observed, c.calibration_factor);
+    const std::size_t next_scan = maps_.empty() ? 0 : maps_.back().last_scan + 1;
+    drift_calibration_ = SettingUpdate{next_scan, "graph.odometry_rotation_per_m", configured, calibrated, reason};
 }
 
 void ClosurePipeline::Optimize(bool final) {

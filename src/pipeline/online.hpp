@@ -40,8 +40,11 @@ class ClosurePipeline {
     /// One scan: points in the sensor frame (deskewed if the odometry deskews) and its pose.
     PipelineUpdate AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
                            const Eigen::Isometry3d& T_world_sensor);
-    /// Closes the last map and runs the final batch optimization.
+    /// Closes the last map and runs the final batch optimization (after the drift calibration, then the
+    /// proximity pass).
     PipelineUpdate Finish();
+    /// The heading-drift rate the drift calibration chose at Finish, when it changed it.
+    const std::optional<SettingUpdate>& DriftCalibration() const { return drift_calibration_; }
 
     /// Map origins after the latest optimization (index = map id).
     const Poses& CorrectedMapPoses() const { return corrected_nodes_; }
@@ -71,6 +74,9 @@ class ClosurePipeline {
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
     void ApplyConsistency();
+    /// Lowers the odometry's rotation drift rate (consistency check and graph) to what the consistent
+    /// closures show (ClosureConsistencyConfig::calibrate_drift) and checks the closures again.
+    void CalibrateDrift();
     void Optimize(bool final);
     void Time(const std::string& stage, double ms);
 
@@ -93,6 +99,7 @@ class ClosurePipeline {
     std::vector<PoseGraphEdge> loop_edges_;
     std::vector<std::size_t> loop_edge_closure_;  ///< closures_ index of each loop edge
     int accepted_since_optimization_ = 0;
+    std::optional<SettingUpdate> drift_calibration_;
     std::map<std::string, StageTimer> timings_;
 };
 

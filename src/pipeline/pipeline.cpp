@@ -247,6 +247,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                                                              : std::string("no scans read"));
     }
     for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
+    if (const auto& drift = pipeline.DriftCalibration()) state.setting_updates.push_back(*drift);
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
                                                std::to_string(accepted));
     if (!reference_complete) state.reference.clear();

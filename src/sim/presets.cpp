@@ -86,7 +86,7 @@ SimConfig Indoor(const std::string& name, SensorConfig sensor) {
 
 std::vector<std::string> SimPresetNames() {
     return {"demo",          "city-64",         "city-16",       "city-128",     "city-livox",
-            "highway-64",    "campus-handheld", "campus-vlp16",  "indoor-2d-180", "indoor-2d-360",
+            "highway-64",    "campus-handheld", "campus-vlp16",  "campus-os0",   "indoor-2d-180", "indoor-2d-360",
             "indoor-depth",  "tiny"};
 }
 
@@ -115,6 +115,12 @@ SimConfig SimPreset(const std::string& name) {
     }
     if (name == "campus-handheld") return Campus(name, LivoxAviaSensor());
     if (name == "campus-vlp16") return Campus(name, Vlp16Sensor());
+    if (name == "campus-os0") {
+        // A 360-degree head with a 90-degree vertical field carried upright: it needs no tilt to see the ground.
+        SimConfig config = Campus(name, Os0Sensor());
+        config.motion.mount_pitch = 0.0;
+        return config;
+    }
     if (name == "indoor-2d-180") return Indoor(name, PlanarLaserSensor(180.0));
     if (name == "indoor-2d-360") return Indoor(name, PlanarLaserSensor(360.0));
     if (name == "indoor-depth") {

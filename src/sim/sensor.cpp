@@ -82,6 +82,18 @@ SensorConfig Os128Sensor() {
     return config;
 }
 
+SensorConfig Os0Sensor() {
+    SensorConfig config;
+    config.label = "OS0";
+    for (int i = 0; i < 128; ++i) config.vertical_angles.push_back(Radians(45.0 - 90.0 * i / 127.0));
+    config.azimuth_steps = 512;
+    SpinningImperfections(config);
+    config.min_range = 0.3;  // sees the person carrying it: the odometry's crop must drop that
+    config.max_range = 50.0;
+    config.range_noise = 0.03;
+    return config;
+}
+
 SensorConfig LivoxAviaSensor() {
     SensorConfig config;
     config.type = SensorType::kRosette;

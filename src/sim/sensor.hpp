@@ -52,6 +52,8 @@ SensorConfig Hdl64Sensor();
 SensorConfig Vlp16Sensor();
 /// OS1-128-like: +-22.5 degrees, 128 beams.
 SensorConfig Os128Sensor();
+/// OS0-128-like wide-angle short-range head: +-45 degrees, 128 beams, 512 azimuths (its 512x10 mode), 0.3-50 m.
+SensorConfig Os0Sensor();
 /// Livox-Avia-like non-repetitive rosette, 70.4 x 77.2 degree field of view.
 SensorConfig LivoxAviaSensor();
 /// 2D laser scanner: 180 degrees (361 beams) or 360 degrees (720 beams), 30 m.

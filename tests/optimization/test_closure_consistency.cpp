@@ -139,6 +139,36 @@ TEST(ClosureConsistency, AShiftTheHeadingDriftWouldHaveTurnedIsInconsistent) {
     EXPECT_LT(CycleChi2(a, laps.True(41, 9), with_means, loose, ClosureConsistencyConfig{}), 1.0);
 }
 
+TEST(ClosureConsistency, TheDriftTheClosuresShowTightensALooseRateAndDropsAShiftedTwin) {
+    // indoor-2d-180's false closure: a room matched one room along (9 m, rotation right). Under a 2D
+    // laser's prior heading rate (2e-3 rad/m) a drift could have put it there, so it agrees with the
+    // true closures; the true closures themselves show a drift near 1e-4 rad/m (TwoLaps), and under
+    // three times that the twin agrees with none of them.
+    const TwoLaps laps;
+    OdometryNoise loose;
+    loose.rotation_per_m = 2e-3;
+    std::vector<ConsistencyClosure> closures;
+    for (int r : {2, 9, 25, 33}) closures.push_back(laps.True(40 + r, r));
+    auto twin = laps.True(57, 17);  // 80 m of travel from the nearest true closure
+    twin.T_query_ref = twin.T_query_ref * PoseFromXYZRPY(9.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    twin.score = 500.0;
+    closures.insert(closures.begin() + 2, twin);
+    ClosureConsistency consistency(ClosureConsistencyConfig{}, loose);
+    for (const auto& c : closures) consistency.Add(c, laps.Odometry());
+    EXPECT_EQ(consistency.ConsistentSet(), (std::vector<char>{1, 1, 1, 1, 1}));
+
+    EXPECT_FALSE(consistency.ObservedRotationRate(laps.Odometry(), 6).has_value());  // too few to trust
+    const auto observed = consistency.ObservedRotationRate(laps.Odometry(), 3);
+    ASSERT_TRUE(observed.has_value());
+    EXPECT_GT(*observed, 1e-5);
+    EXPECT_LT(*observed, 2e-4);
+    OdometryNoise calibrated = loose;
+    calibrated.rotation_per_m = 3.0 * *observed;
+    const ClosureConsistency rechecked = consistency.Rechecked(calibrated, laps.Odometry());
+    EXPECT_EQ(rechecked.ConsistentSet(), (std::vector<char>{1, 1, 0, 1, 1}));
+    EXPECT_DOUBLE_EQ(rechecked.noise().rotation_per_m, calibrated.rotation_per_m);
+}
+
 TEST(ClosureConsistency, ASingleClosureIsKeptAndDisablingKeepsAll) {
     const TwoLaps laps;
     auto wrong = laps.True(50, 10);
