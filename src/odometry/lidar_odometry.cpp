@@ -33,6 +33,7 @@ const OdometryConfig& Validated(const OdometryConfig& config) {
     require(config.convergence > 0.0, "convergence must be positive");
     require(config.max_correction > 0.0, "max_correction must be positive");
     require(config.degenerate_thickness >= 0.0, "degenerate_thickness must be >= 0");
+    require(config.prior_bias_window > 0.0, "prior_bias_window must be positive");
     return config;
 }
 
@@ -55,9 +56,10 @@ std::string Describe(double value) {
 LidarOdometry::LidarOdometry(const OdometryConfig& config)
     : config_(Validated(config)),
       map_(config.VoxelSize(), config.max_points_per_voxel),
-      threshold_(config.initial_threshold, config.min_motion_th, config.max_range) {
+      threshold_(config.initial_threshold, config.min_motion_th, config.max_range),
+      prior_bias_(PriorBiasConfig{config.prior_bias_correction, config.prior_bias_window}) {
     // 2D scans have no planes in the map (a wall is a line): they stay point-to-point.
-    map_.EnableNormals(config.residual == IcpResidual::kPointToPlane && !config.planar);
+    map_.EnableNormals(config.residual == IcpResidual::kPointToPlane, config.planar);
 }
 
 void LidarOdometry::SetMaxRange(double max_range) {
@@ -71,7 +73,9 @@ void LidarOdometry::SetMaxRange(double max_range) {
 Eigen::Isometry3d LidarOdometry::PredictMotion(const Scan& scan) {
     if (config_.use_prior && scan.T_odom_sensor && last_T_odom_sensor_) {
         stats_.prior_used = true;
-        return last_T_odom_sensor_->inverse() * *scan.T_odom_sensor;
+        raw_prior_delta_ = last_T_odom_sensor_->inverse() * *scan.T_odom_sensor;
+        stats_.prior_heading_bias = prior_bias_.RatePerMetre().z();
+        return prior_bias_.Correct(raw_prior_delta_);
     }
     return last_delta_;
 }
@@ -160,7 +164,7 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         params.convergence = config_.convergence;
         params.min_correspondences = config_.min_correspondences;
         params.planar = config_.planar;
-        params.point_to_plane = config_.residual == IcpResidual::kPointToPlane && !config_.planar;
+        params.point_to_plane = config_.residual == IcpResidual::kPointToPlane;
         IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
         // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
         // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
@@ -216,6 +220,7 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         ++num_degenerate_;
     } else {
         threshold_.Update(T_predicted.inverse() * T_new);
+        if (stats_.prior_used) prior_bias_.Update(raw_prior_delta_, last_pose.inverse() * T_new);
         const double correction = (T_predicted.inverse() * T_new).translation().norm();
         sum_squared_corrections_ += correction * correction;
         ++num_corrections_;

@@ -12,6 +12,7 @@
 #include "odometry/adaptive_threshold.hpp"
 #include "odometry/odometry_config.hpp"
 #include "odometry/parallel_filter.hpp"
+#include "odometry/prior_bias.hpp"
 #include "odometry/voxel_hash_map.hpp"
 
 namespace revisit {
@@ -29,6 +30,7 @@ struct OdometryFrameStats {
     int iterations = 0;
     double sigma = 0.0;                  ///< [m] adaptive threshold used for this frame
     bool prior_used = false;             ///< the prediction came from Scan::T_odom_sensor
+    double prior_heading_bias = 0.0;     ///< [rad/m] the prior's estimated turn per metre about the sensor z, removed
     bool turn_hypothesis_used = false;   ///< the translation-only prediction registered better
     bool degenerate = false;             ///< pose = prediction, map not updated
     std::string warning;                 ///< why the frame was degenerate
@@ -79,6 +81,8 @@ class LidarOdometry {
     Poses poses_;
     Eigen::Isometry3d last_delta_ = Eigen::Isometry3d::Identity();
     std::optional<Eigen::Isometry3d> last_T_odom_sensor_;
+    PriorRotationBias prior_bias_;
+    Eigen::Isometry3d raw_prior_delta_ = Eigen::Isometry3d::Identity();  ///< this frame's prior increment, uncorrected
     std::vector<Eigen::Vector3d> deskewed_;
     std::vector<Eigen::Vector3d> downsampled_;
     // Per-frame buffers kept between frames (issue 19: no allocation per scan).

@@ -170,7 +170,9 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
         const Eigen::Isometry3d T = Translation(centre) * T_centred;
         const Moments moments = Accumulate(points_in_sensor, map, T, centre, params, neighbourhoods);
         // Decided once per frame, from the initial guess: the iterations then minimize one cost.
-        if (iteration == 0) result.planes_only = params.point_to_plane && PlanesSuffice(moments);
+        // Never in planar mode: a 2D scan has few points on lines (radish intel: ~60 per scan), and the
+        // lines alone fell below min_correspondences on a third of its scans; mixed, they register.
+        if (iteration == 0) result.planes_only = params.point_to_plane && !params.planar && PlanesSuffice(moments);
         result.correspondences = result.planes_only ? moments.plane_count : moments.count;
         result.plane_correspondences = moments.plane_count;
         result.iterations = iteration + 1;

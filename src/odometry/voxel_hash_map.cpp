@@ -57,6 +57,25 @@ bool FitPlaneNormal(const Eigen::Vector3d* begin, const Eigen::Vector3d* end, Ei
     return normal.allFinite();
 }
 
+/// The in-plane normal of the line through `points` (x, y only: a 2D laser's map, every point at one
+/// height) when they lie along one: the 2D covariance's smallest eigenvalue below kMaxThicknessRatio of
+/// the largest. The 3D fit would pick the vertical, in which such a map has no extent at all.
+bool FitLineNormal(const Eigen::Vector3d* begin, const Eigen::Vector3d* end, Eigen::Vector3d& normal) {
+    const auto n = end - begin;
+    if (n < kMinPlanePoints) return false;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector3d* p = begin; p != end; ++p) mean += p->head<2>();
+    mean /= static_cast<double>(n);
+    Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+    for (const Eigen::Vector3d* p = begin; p != end; ++p) covariance.noalias() += (p->head<2>() - mean) * (p->head<2>() - mean).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver;
+    solver.computeDirect(covariance);
+    const Eigen::Vector2d& lambda = solver.eigenvalues();  // ascending
+    if (!(lambda[1] > 0.0) || !(lambda[0] <= kMaxThicknessRatio * lambda[1])) return false;
+    normal = Eigen::Vector3d(solver.eigenvectors()(0, 0), solver.eigenvectors()(1, 0), 0.0).normalized();
+    return normal.allFinite();
+}
+
 }  // namespace
 
 VoxelHashMap::VoxelHashMap(double voxel_size, int max_points_per_voxel)
@@ -126,7 +145,8 @@ void VoxelHashMap::UpdateNormals() {
             if (normal_counts_[slot] == counts_[slot]) continue;
             normal_counts_[slot] = counts_[slot];
             const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
-            normal_ok_[slot] = FitPlaneNormal(begin, begin + counts_[slot], normals_[slot]);
+            const auto fit = normals_in_plane_ ? FitLineNormal : FitPlaneNormal;
+            normal_ok_[slot] = fit(begin, begin + counts_[slot], normals_[slot]);
             if (normal_ok_[slot]) continue;
             // Too few points of its own (far from the sensor, sparse rings: often one ring's line), or
             // not a plane: the plane of its 27-voxel neighbourhood, if that is one.
@@ -138,7 +158,7 @@ void VoxelHashMap::UpdateNormals() {
                 const Eigen::Vector3d* b = points_.data() + std::size_t(it->second) * max_points_;
                 gathered.insert(gathered.end(), b, b + counts_[it->second]);
             }
-            normal_ok_[slot] = FitPlaneNormal(gathered.data(), gathered.data() + gathered.size(), normals_[slot]);
+            normal_ok_[slot] = fit(gathered.data(), gathered.data() + gathered.size(), normals_[slot]);
         }
     });
 }

@@ -65,7 +65,12 @@ class VoxelHashMap {
 
     /// Keep a plane normal per voxel (point-to-plane ICP): after each AddPoints, the voxels whose
     /// points changed get their normal recomputed from their own points; the others keep theirs.
-    void EnableNormals(bool enabled) { normals_enabled_ = enabled; }
+    /// `in_plane`: a 2D laser's map (every point at one height): the normals are those of the lines the
+    /// points lie along, within the plane.
+    void EnableNormals(bool enabled, bool in_plane = false) {
+        normals_enabled_ = enabled;
+        normals_in_plane_ = in_plane;
+    }
     /// The unit normal of the voxel holding `point` (a pointer FindNearest returned), or nullptr when
     /// its points do not span a plane (too few, collinear, or a volume): the caller falls back to
     /// point-to-point. Valid until the map changes.
@@ -104,6 +109,7 @@ class VoxelHashMap {
     std::vector<std::uint16_t> counts_;                      ///< slot -> number of points
     std::vector<Eigen::Vector3d> points_;                    ///< slot * max_points_ + k
     bool normals_enabled_ = false;
+    bool normals_in_plane_ = false;
     std::vector<Eigen::Vector3d> normals_;       ///< slot -> unit plane normal (when normal_ok_)
     std::vector<std::uint8_t> normal_ok_;        ///< slot -> the voxel's points span a plane
     std::vector<std::uint16_t> normal_counts_;   ///< slot -> point count the normal was computed from

@@ -111,5 +111,58 @@ TEST(PointToPlane, ASingleRingLineIsNotTakenForAPlane) {
     EXPECT_NEAR(std::abs(normal->x()), 1.0, 1e-3);
 }
 
+TEST(PointToPlane, A2DLasersWallLineGetsItsNormalWithinThePlane) {
+    // A 2D laser's map: every point at one height. The 3D fit has no plane to find (the points span a
+    // line), so without the in-plane mode a wall line has no normal; with it, the line's normal in x-y.
+    std::vector<Eigen::Vector3d> wall;
+    for (double y = 0.02; y < 0.5; y += 0.04) wall.emplace_back(2.05 + 0.003 * std::sin(31.0 * y), y, 0.0);
+    for (const bool in_plane : {false, true}) {
+        VoxelHashMap map(0.5, 20);
+        map.EnableNormals(true, in_plane);
+        map.AddPoints(wall);
+        const Eigen::Vector3d* nearest = map.FindNearest(Eigen::Vector3d(2.1, 0.25, 0.0), 0.5);
+        ASSERT_NE(nearest, nullptr);
+        const Eigen::Vector3d* normal = map.NormalOf(nearest);
+        if (!in_plane) {
+            EXPECT_EQ(normal, nullptr);
+            continue;
+        }
+        ASSERT_NE(normal, nullptr);
+        EXPECT_NEAR(std::abs(normal->x()), 1.0, 1e-2);
+        EXPECT_EQ(normal->z(), 0.0);
+    }
+}
+
+TEST(PointToPlane, PlanarPointToLineRegistersARotatedCorridor) {
+    // A corridor's two walls and an end wall, sampled 4 cm apart in the map and 15 cm in the scan; the
+    // scan is turned by 0.5 deg and shifted 5 cm. Point-to-line in planar mode recovers the pose.
+    std::vector<Eigen::Vector3d> map_points, scan_points;
+    for (double x = -6.0; x <= 6.0; x += 0.04) {
+        map_points.emplace_back(x, 1.2, 0.0);
+        map_points.emplace_back(x, -1.2, 0.0);
+    }
+    for (double y = -1.2; y <= 1.2; y += 0.04) map_points.emplace_back(6.0, y, 0.0);
+    const Eigen::Isometry3d truth = PoseFromXYZRPY(0.05, -0.03, 0.0, 0.0, 0.0, 0.5 * kDeg);
+    for (double x = -5.0; x <= 5.0; x += 0.15) {
+        scan_points.push_back(truth.inverse() * Eigen::Vector3d(x + 0.01, 1.2, 0.0));
+        scan_points.push_back(truth.inverse() * Eigen::Vector3d(x + 0.07, -1.2, 0.0));
+    }
+    for (double y = -1.1; y <= 1.1; y += 0.15) scan_points.push_back(truth.inverse() * Eigen::Vector3d(6.0, y + 0.02, 0.0));
+    VoxelHashMap map(0.2, 20);
+    map.EnableNormals(true, true);
+    map.AddPoints(map_points);
+    IcpParams params;
+    params.max_correspondence_distance = 0.5;
+    params.kernel = 0.1;
+    params.planar = true;
+    params.point_to_plane = true;
+    const IcpResult result = RegisterPointsToMap(scan_points, map, Eigen::Isometry3d::Identity(), params);
+    ASSERT_TRUE(result.valid);
+    EXPECT_GT(result.plane_correspondences, scan_points.size() / 2);
+    const Eigen::Isometry3d error = truth.inverse() * result.T_world_sensor;
+    EXPECT_LT(error.translation().norm(), 0.01);
+    EXPECT_LT(std::abs(std::atan2(error.linear()(1, 0), error.linear()(0, 0))), 0.02 * kDeg);
+}
+
 }  // namespace
 }  // namespace revisit
