@@ -301,6 +301,13 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
             VoxelOfInverse(query, inv_voxel_size_) == cache.centre) {
             return cache.nearest;
         }
+    } else if (cache.max_distance == max_distance && max_distance > 0.0) {
+        // Nothing within max_distance, and every point was at least other_distance away: after a move
+        // by d, still nothing while other - d >= max_distance.
+        const double moved = (query - cache.searched_at).norm() + 1e-6 * voxel_size_;
+        if (cache.other_distance - moved >= max_distance && VoxelOfInverse(query, inv_voxel_size_) == cache.centre) {
+            return nullptr;
+        }
     }
     double other2 = 0.0;
     const Eigen::Vector3d* nearest = Search(query, max_distance, [this, &cache](const Voxel& centre, std::size_t k) -> std::int64_t {
