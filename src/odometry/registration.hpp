@@ -22,7 +22,7 @@ struct IcpParams {
     /// direction they are used alone, otherwise together with point-to-point ones for the rest.
     bool point_to_plane = false;
     /// Anderson acceleration over this many previous steps (0: plain Gauss-Newton iterations); an
-    /// extrapolation is kept only when it lowers the robust cost (see RegisterPointsToMap).
+    /// extrapolation is kept only when the robust cost does not rise (see RegisterPointsToMap).
     int anderson_depth = 0;
 };
 
