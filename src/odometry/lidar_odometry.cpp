@@ -162,6 +162,7 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         params.kernel = config_.kernel == IcpKernel::kPaper ? sigma / 3.0 : sigma;
         params.max_iterations = config_.max_iterations;
         params.convergence = config_.convergence;
+        params.anderson_depth = config_.anderson_depth;
         params.min_correspondences = config_.min_correspondences;
         params.planar = config_.planar;
         params.point_to_plane = config_.residual == IcpResidual::kPointToPlane;

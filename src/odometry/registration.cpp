@@ -3,10 +3,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include "core/se3.hpp"
+#include "odometry/anderson.hpp"
 
 namespace revisit {
 namespace {
@@ -38,6 +40,8 @@ struct Moments {
     // Point-to-plane correspondences (residual e = n^T r, Jacobian row j = [n; p x n]): summed directly.
     Matrix6d wjjt = Matrix6d::Zero();                     ///< sum w j j^T
     Vector6d wje = Vector6d::Zero();                      ///< sum w j e
+    double cost = 0.0;        ///< sum of the Geman-McClure costs k s / (k + s), s = |r|^2 (or e^2)
+    double plane_cost = 0.0;  ///< the same over the point-to-plane correspondences
     std::size_t count = 0;
     std::size_t plane_count = 0;
 
@@ -49,6 +53,8 @@ struct Moments {
         wpxr += other.wpxr;
         wjjt += other.wjjt;
         wje += other.wje;
+        cost += other.cost;
+        plane_cost += other.plane_cost;
         count += other.count;
         plane_count += other.plane_count;
         return *this;
@@ -76,6 +82,7 @@ Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMa
                     const double e = normal->dot(r);
                     const double denominator = params.kernel + e * e;
                     const double w = k2 / (denominator * denominator);
+                    if (params.anderson_depth > 0) sums.plane_cost += params.kernel * e * e / denominator;
                     Vector6d j;
                     j << *normal, p.cross(*normal);
                     sums.wjjt.noalias() += (w * j) * j.transpose();
@@ -85,6 +92,7 @@ Moments Accumulate(const std::vector<Eigen::Vector3d>& points, const VoxelHashMa
                 }
                 const double denominator = params.kernel + r.squaredNorm();
                 const double w = k2 / (denominator * denominator);
+                if (params.anderson_depth > 0) sums.cost += params.kernel * r.squaredNorm() / denominator;
                 sums.w += w;
                 sums.wp += w * p;
                 sums.wppt.noalias() += (w * p) * p.transpose();
@@ -140,6 +148,13 @@ Vector6d SolveStep(const Matrix6d& JTJ, const Vector6d& JTr, bool planar) {
     return dx;
 }
 
+/// The robust cost the iterations decrease: every point without a correspondence costs the kernel's
+/// ceiling k (so iterates with different correspondence counts compare).
+double Cost(const Moments& m, bool planes_only, std::size_t points, double kernel) {
+    const std::size_t used = planes_only ? m.plane_count : m.count;
+    return (planes_only ? m.plane_cost : m.cost + m.plane_cost) + kernel * static_cast<double>(points - used);
+}
+
 Eigen::Isometry3d Translation(const Eigen::Vector3d& t) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = t;
@@ -158,7 +173,8 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
     // the same as with world-origin updates (KISS-ICP), the steps are better conditioned far
     // from the origin.
     const Eigen::Vector3d centre = T_initial.translation();
-    Eigen::Isometry3d T_centred = Translation(-centre) * T_initial;
+    const Eigen::Isometry3d T_centred0 = Translation(-centre) * T_initial;
+    Eigen::Isometry3d T_centred = T_centred0;
     Matrix6d JTJ;
     Vector6d JTr;
     result.valid = true;
@@ -166,6 +182,14 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
     // buffer of the calling thread, reused from scan to scan.
     static thread_local std::vector<VoxelHashMap::Neighbourhood> neighbourhoods;
     neighbourhoods.assign(points_in_sensor.size(), VoxelHashMap::Neighbourhood{});
+    // Anderson acceleration in the coordinates y of T_centred = Exp(y) T_centred0. An extrapolated
+    // iterate is kept only when its robust cost is no higher than the last kept iterate's; otherwise
+    // the plain step from that iterate is taken. The stopping test is the plain step's, as without it.
+    AndersonAccelerator anderson(params.anderson_depth);
+    Vector6d y = Vector6d::Zero();
+    Eigen::Isometry3d T_plain = T_centred0;  // the plain step's result from the last kept iterate
+    bool extrapolated = false;
+    double kept_cost = std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
         const Eigen::Isometry3d T = Translation(centre) * T_centred;
         const Moments moments = Accumulate(points_in_sensor, map, T, centre, params, neighbourhoods);
@@ -180,6 +204,17 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
             result.valid = false;
             break;
         }
+        if (params.anderson_depth > 0) {
+            const double cost = Cost(moments, result.planes_only, points_in_sensor.size(), params.kernel);
+            if (extrapolated && !(cost <= kept_cost)) {
+                T_centred = T_plain;
+                y = LogSE3(T_centred * T_centred0.inverse());
+                extrapolated = false;
+                anderson.Reset();
+                continue;
+            }
+            kept_cost = cost;
+        }
         AssembleNormalEquations(moments, result.planes_only, JTJ, JTr);
         const Vector6d dx = SolveStep(JTJ, JTr, params.planar);
         if (!dx.allFinite()) {
@@ -190,6 +225,11 @@ IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sens
         if (dx.norm() < params.convergence) {
             result.converged = true;
             break;
+        }
+        if (params.anderson_depth > 0) {
+            T_plain = T_centred;
+            y = anderson.Next(y, LogSE3(T_plain * T_centred0.inverse()), extrapolated);
+            if (extrapolated) T_centred = ExpSE3(y) * T_centred0;
         }
     }
     if (!result.valid) {

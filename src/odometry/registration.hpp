@@ -21,6 +21,9 @@ struct IcpParams {
     /// its component along that normal; when those correspondences constrain every translation
     /// direction they are used alone, otherwise together with point-to-point ones for the rest.
     bool point_to_plane = false;
+    /// Anderson acceleration over this many previous steps (0: plain Gauss-Newton iterations); an
+    /// extrapolation is kept only when the robust cost does not rise (see RegisterPointsToMap).
+    int anderson_depth = 0;
 };
 
 struct IcpResult {
@@ -39,7 +42,10 @@ struct IcpResult {
 /// where the planes alone are used when they constrain every translation direction),
 /// weights it by k^2 / (k + |r|^2)^2 (Geman-McClure, METHOD.md section 1), solves the
 /// 6x6 (planar: 3x3) Gauss-Newton system by LDLT and applies the update by the SE(3)
-/// exponential. The normal equations are summed with a deterministic reduction: the result is
+/// exponential; with `anderson_depth` the next iterate is extrapolated from the last steps (Anderson
+/// acceleration), kept only when its truncated robust cost (each point without a correspondence
+/// costs the kernel's ceiling) is no higher than the previous kept iterate's; the stopping test is
+/// that of the plain step. The normal equations are summed with a deterministic reduction: the result is
 /// bit-identical for any number of TBB threads.
 IcpResult RegisterPointsToMap(const std::vector<Eigen::Vector3d>& points_in_sensor, const VoxelHashMap& map,
                               const Eigen::Isometry3d& T_initial, const IcpParams& params);

@@ -29,6 +29,14 @@ std::array<Voxel, 27> MakeOffsets() {
     return offsets;
 }
 const std::array<Voxel, 27> kOffsets = MakeOffsets();
+/// Per offset, per axis: 0 below, 1 same, 2 above (an index into a query's per-axis distances).
+std::array<std::array<std::uint8_t, 3>, 27> MakeSides() {
+    std::array<std::array<std::uint8_t, 3>, 27> sides;
+    for (std::size_t k = 0; k < kOffsets.size(); ++k)
+        for (int a = 0; a < 3; ++a) sides[k][a] = static_cast<std::uint8_t>(kOffsets[k][a] + 1);
+    return sides;
+}
+const std::array<std::array<std::uint8_t, 3>, 27> kSides = MakeSides();
 /// Index in kOffsets of the first voxel of each ring (centre, 6 faces, 12 edges, 8 corners).
 constexpr std::size_t kFirstOfRing[4] = {0, 1, 7, 19};
 
@@ -246,6 +254,8 @@ const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double
     const Eigen::Vector3d above = Eigen::Vector3d::Constant(voxel_size_) - below;
     const Eigen::Vector3d below2 = below.cwiseProduct(below);
     const Eigen::Vector3d above2 = above.cwiseProduct(above);
+    // Per axis, the squared distance to the lower neighbour, the query's own layer (0) and the upper one.
+    const double axis2[3][3] = {{below2[0], 0.0, above2[0]}, {below2[1], 0.0, above2[1]}, {below2[2], 0.0, above2[2]}};
 
     // Lower bounds of the edge and corner voxels' distances: the sums of the two and the three
     // smallest per-axis distances to the nearer face. Once the best point is closer, no voxel of
@@ -268,9 +278,9 @@ const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double
                 break;
             }
         }
-        const Voxel& offset = kOffsets[k];
-        double box2 = 0.0;
-        for (int a = 0; a < 3; ++a) box2 += offset[a] < 0 ? below2[a] : (offset[a] > 0 ? above2[a] : 0.0);
+        // Looked up, not branched on; summed from 0 in axis order as the ring bounds are.
+        const std::array<std::uint8_t, 3>& side = kSides[k];
+        const double box2 = ((0.0 + axis2[0][side[0]]) + axis2[1][side[1]]) + axis2[2][side[2]];
         if (box2 >= best2) {
             second2 = std::min(second2, box2);
             continue;
@@ -320,6 +330,13 @@ const Eigen::Vector3d* VoxelHashMap::FindNearest(const Eigen::Vector3d& query, d
         if (reach < cache.other_distance - moved && reach < max_distance &&
             VoxelOfInverse(query, inv_voxel_size_) == cache.centre) {
             return cache.nearest;
+        }
+    } else if (cache.max_distance == max_distance && max_distance > 0.0) {
+        // Nothing within max_distance, and every point was at least other_distance away: after a move
+        // by d, still nothing while other - d >= max_distance.
+        const double moved = (query - cache.searched_at).norm() + 1e-6 * voxel_size_;
+        if (cache.other_distance - moved >= max_distance && VoxelOfInverse(query, inv_voxel_size_) == cache.centre) {
+            return nullptr;
         }
     }
     double other2 = 0.0;

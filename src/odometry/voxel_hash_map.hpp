@@ -48,16 +48,18 @@ class VoxelHashMap {
     /// lower bound on every other point's. A query that moved by d from there, within the same voxel,
     /// has the same unique nearest point while nearest + d < other - d and nearest + d < max_distance
     /// (triangle inequality), so it is answered without a search: ICP's late iterations move points by
-    /// millimetres, far less than the gaps between map points.
+    /// millimetres, far less than the gaps between map points. Likewise a query that found nothing
+    /// within max_distance, every point being at least other away, finds nothing while other - d >=
+    /// max_distance (points of new geometry, ~30% of the searches on a simulated city turn).
     struct Neighbourhood {
         static constexpr std::int32_t kUnknown = -2;  ///< not looked up yet
         Voxel centre = Voxel::Constant(std::numeric_limits<int>::min());
         std::array<std::int32_t, 27> slots{};  ///< per neighbour offset, -1: no such voxel
         Eigen::Vector3d searched_at = Eigen::Vector3d::Zero();  ///< query of the last search
-        const Eigen::Vector3d* nearest = nullptr;               ///< its answer (nullptr: reuse nothing)
+        const Eigen::Vector3d* nearest = nullptr;               ///< its answer (nullptr: none within max_distance)
         double nearest_distance = 0.0;                          ///< [m] from searched_at to *nearest
-        double other_distance = 0.0;  ///< [m] no other point of the 27 voxels is closer to searched_at
-        double max_distance = 0.0;    ///< [m] of the last search
+        double other_distance = 0.0;  ///< [m] no other point of the 27 voxels is closer to searched_at (no point at all when nearest is nullptr)
+        double max_distance = 0.0;    ///< [m] of the last search (0: none yet, reuse nothing)
     };
     /// FindNearest with `cache` for this query's neighbourhood: the same result, fewer hash lookups
     /// and searches.

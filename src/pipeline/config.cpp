@@ -28,6 +28,8 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
               "point_to_plane: along planar map voxels' normals, planes alone when they fix every translation (data: rings >= 1 deg apart); KISS-ICP's point_to_point");
     s.Add("odometry.max_iterations", &o.max_iterations, "", "ICP iterations per frame (KISS-ICP: 500)", Range{1, 10000});
     s.Add("odometry.convergence", &o.convergence, "", "stop when the update norm is below (KISS-ICP: 1e-4)", Range{1e-12, 1});
+    s.Add("odometry.anderson_depth", &o.anderson_depth, "",
+          "Anderson acceleration of the ICP over this many previous steps, kept only when the robust cost does not rise; 2: 5-8% less odometry CPU, other poses (0: plain steps, KISS-ICP)", Range{0, 10});
     s.Add("odometry.min_correspondences", &o.min_correspondences, "", "fewer: keep the motion prediction", Range{3, 1000000});
     s.Add("odometry.max_correction", &o.max_correction, "m", "ICP result this far (translation) from the prediction is deemed diverged", Range{0.01, 1000});
     s.Add("odometry.max_correction_factor", &o.max_correction_factor, "",

@@ -125,6 +125,33 @@ TEST(VoxelHashMap, NeighbourhoodCacheReusesTheNearestPointOnlyWhenItCannotHaveCh
     }
 }
 
+TEST(VoxelHashMap, NeighbourhoodCacheKeepsNoAnswerOnlyWhileNothingCanComeInReach) {
+    // Sparse map points (0.7 m apart) and a 0.3 m reach: most queries find nothing, and those creeping
+    // by up to 2 cm per step towards the points come into reach at some step: each answer, none or a
+    // point, must be the full search's.
+    std::vector<Eigen::Vector3d> sparse;
+    for (int x = -8; x < 8; ++x)
+        for (int y = -8; y < 8; ++y) sparse.emplace_back(0.7 * x, 0.7 * y, 0.0);
+    VoxelHashMap map(1.0, 20);
+    map.AddPoints(sparse);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> position(-5.0, 5.0), height(0.2, 0.6);
+    std::vector<Eigen::Vector3d> queries;
+    for (int i = 0; i < 2000; ++i) queries.emplace_back(position(rng), position(rng), height(rng));
+    std::vector<VoxelHashMap::Neighbourhood> caches(queries.size());
+    std::size_t none = 0, found = 0;
+    for (int iteration = 0; iteration < 20; ++iteration) {
+        for (std::size_t i = 0; i < queries.size(); ++i) {
+            queries[i].z() -= 0.02;
+            const Eigen::Vector3d* expected = map.FindNearest(queries[i], 0.3);
+            ASSERT_EQ(map.FindNearest(queries[i], 0.3, caches[i]), expected) << "query " << i << " iteration " << iteration;
+            (expected == nullptr ? none : found) += 1;
+        }
+    }
+    EXPECT_GT(none, 10000u);
+    EXPECT_GT(found, 1000u);
+}
+
 TEST(VoxelHashMap, NeighbourhoodCacheGivesTheSameNearestPointAsTheLookup) {
     const auto scan = ScanLike(9);
     std::vector<Eigen::Vector3d> points;
