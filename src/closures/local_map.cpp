@@ -13,8 +13,11 @@ Eigen::Vector3i LocalMapper::KeyOf(const Eigen::Vector3f& point_in_map) const {
 }
 
 void LocalMapper::Insert(const Eigen::Vector3f& point_in_map) {
-    auto& voxel = voxels_[KeyOf(point_in_map)];
-    if (int(voxel.size()) < config_.max_points_per_voxel) voxel.push_back(point_in_map);
+    const Eigen::Vector3i key = KeyOf(point_in_map);
+    auto& voxel = voxels_[key];
+    if (int(voxel.size()) >= config_.max_points_per_voxel) return;
+    voxel.push_back(point_in_map);
+    if (int(voxel.size()) == config_.max_points_per_voxel) full_voxels_.insert(key);
 }
 
 void LocalMapper::StartMap(std::size_t scan_index, const Eigen::Isometry3d& T_world_sensor) {
@@ -55,6 +58,7 @@ std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const std::
             const Eigen::Isometry3d T_world_old = current_.T_world_map;
             closed = CloseCurrent();
             voxels_.clear();
+            full_voxels_.clear();
             StartMap(scan_index, T_world_sensor);
             if (config_.carry_over) {
                 // Later code: points within max_range of the new origin overlap into the next map.
@@ -83,8 +87,7 @@ std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const std::
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const auto& range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 points_in_map_[i] = T_map_scan_f * points_in_sensor[i];
-                const auto it = voxels_.find(KeyOf(points_in_map_[i]));
-                full_[i] = it != voxels_.end() && int(it->second.size()) >= config_.max_points_per_voxel;
+                full_[i] = full_voxels_.count(KeyOf(points_in_map_[i])) != 0;
             }
         });
         for (std::size_t i = 0; i < n; ++i)
@@ -100,6 +103,7 @@ std::optional<LocalMap> LocalMapper::Finish() {
     if (!has_current_) return std::nullopt;
     LocalMap map = CloseCurrent();
     voxels_.clear();
+    full_voxels_.clear();
     return map;
 }
 

@@ -25,9 +25,12 @@ bool MotionMeter::Add(const Scan& scan) {
         const double dt = scan.timestamp - last_time_;
         // Observations that share a time stamp (a rawlog's odometry and laser) are one step.
         if (!(dt > 0.0)) return !Done();
-        const double step = (last_pose_->inverse() * pose).translation().norm();
+        const Eigen::Isometry3d delta = last_pose_->inverse() * pose;
+        const double step = delta.translation().norm();
         travel_ += step;
         speeds_.push_back(step / dt);
+        if (last_step_) turn_changes_.push_back(Eigen::AngleAxisd(last_step_->linear().transpose() * delta.linear()).angle());
+        last_step_ = delta;
     }
     last_pose_ = pose;
     last_time_ = scan.timestamp;
@@ -44,6 +47,7 @@ MotionProfile MotionMeter::Profile() const {
     if (speeds_.size() < 5) return profile;  // no usable time stamps
     // The 75th percentile: a platform that stands for part of the window still shows its pace.
     profile.speed = Quantile(speeds_, 0.75);
+    if (!turn_changes_.empty()) profile.turn_misprediction = Quantile(turn_changes_, 0.9);
     profile.source = from_prior_ ? "odometry prior" : "lidar odometry";
     return profile;
 }
@@ -57,7 +61,8 @@ std::string MotionProfile::Describe() const {
         return out.str();
     }
     out << "speed " << speed << " m/s (75th percentile over " << scans << " scans, " << std::setprecision(1) << duration
-        << " s, " << travel << " m, from the " << source << ")";
+        << " s, " << travel << " m, from the " << source << "); constant-velocity turn off by "
+        << std::setprecision(2) << turn_misprediction * 180.0 / 3.14159265358979323846 << " deg (90th percentile)";
     return out.str();
 }
 

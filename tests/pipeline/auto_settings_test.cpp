@@ -57,6 +57,9 @@ TEST(AutoSettings, AWalkACityDriveAndAnIndoorLaserGetDifferentDocumentedSettings
     EXPECT_LT(walk.odometry.voxel_size, city.odometry.voxel_size) << DescribeAll({&walk_settings, &city_settings});
     EXPECT_LT(indoor.odometry.max_range, city.odometry.max_range);
     EXPECT_LT(walk.odometry.min_range, 5.0);  // the paper-era 5 m would drop the walk's near scene
+    // Issue 19: the second ICP from the translation-only guess is for the swaying hand, not the car.
+    EXPECT_TRUE(walk.odometry.turn_hypothesis) << DescribeAll({&walk_settings});
+    EXPECT_FALSE(city.odometry.turn_hypothesis) << DescribeAll({&city_settings});
     // What was applied is what was chosen, and each choice says why.
     for (const auto* s : {&walk_settings, &city_settings, &indoor_settings}) {
         ASSERT_FALSE(s->choices.empty());
