@@ -60,6 +60,9 @@ LocalMap AccumulateMap(const std::vector<Scan>& scans, std::size_t first, std::s
 
 OdometryConfig OdometryConfigFor(const std::string& sensor) {
     OdometryConfig config;  // 64-beam: the paper-era defaults (METHOD.md section 1)
+    // What the settings from the data choose for a car's smooth turns (README: odometry.turn_hypothesis):
+    // no second ICP from the turn-less guess. The handheld Livox walk and 2D lasers keep it.
+    config.turn_hypothesis = sensor != "64-beam";
     if (sensor == "livox") {
         config.min_range = 1.0;  // handheld: no ego vehicle to remove
     } else if (sensor == "2d") {
