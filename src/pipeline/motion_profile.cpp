@@ -1,5 +1,6 @@
 #include "pipeline/motion_profile.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -62,7 +63,7 @@ std::string MotionProfile::Describe() const {
     }
     out << "speed " << speed << " m/s (75th percentile over " << scans << " scans, " << std::setprecision(1) << duration
         << " s, " << travel << " m, from the " << source << "); constant-velocity turn off by "
-        << std::setprecision(2) << turn_misprediction * 180.0 / 3.14159265358979323846 << " deg (90th percentile)";
+        << std::setprecision(2) << turn_misprediction * 180.0 / M_PI << " deg (90th percentile)";
     return out.str();
 }
 

@@ -33,6 +33,19 @@ void SpinningImperfections(SensorConfig& config) {
     config.azimuth_jitter = true;
 }
 
+/// An Ouster-like head: 128 beams evenly over +-`half_fov_deg`, 3 cm range noise.
+SensorConfig Ouster128(const std::string& label, double half_fov_deg, int azimuth_steps, double min_range, double max_range) {
+    SensorConfig config;
+    config.label = label;
+    for (int i = 0; i < 128; ++i) config.vertical_angles.push_back(Radians(half_fov_deg - 2.0 * half_fov_deg * i / 127.0));
+    config.azimuth_steps = azimuth_steps;
+    SpinningImperfections(config);
+    config.min_range = min_range;
+    config.max_range = max_range;
+    config.range_noise = 0.03;
+    return config;
+}
+
 }  // namespace
 
 std::size_t SensorConfig::NumRays() const {
@@ -70,29 +83,10 @@ SensorConfig Vlp16Sensor() {
     return config;
 }
 
-SensorConfig Os128Sensor() {
-    SensorConfig config;
-    config.label = "OS128";
-    for (int i = 0; i < 128; ++i) config.vertical_angles.push_back(Radians(22.5 - 45.0 * i / 127.0));
-    config.azimuth_steps = 1024;
-    SpinningImperfections(config);
-    config.min_range = 1.0;
-    config.max_range = 120.0;
-    config.range_noise = 0.03;
-    return config;
-}
+SensorConfig Os128Sensor() { return Ouster128("OS128", 22.5, 1024, 1.0, 120.0); }
 
-SensorConfig Os0Sensor() {
-    SensorConfig config;
-    config.label = "OS0";
-    for (int i = 0; i < 128; ++i) config.vertical_angles.push_back(Radians(45.0 - 90.0 * i / 127.0));
-    config.azimuth_steps = 512;
-    SpinningImperfections(config);
-    config.min_range = 0.3;  // sees the person carrying it: the odometry's crop must drop that
-    config.max_range = 50.0;
-    config.range_noise = 0.03;
-    return config;
-}
+// min_range 0.3 m: it sees the person carrying it, which the odometry's crop must drop.
+SensorConfig Os0Sensor() { return Ouster128("OS0", 45.0, 512, 0.3, 50.0); }
 
 SensorConfig LivoxAviaSensor() {
     SensorConfig config;
