@@ -6,6 +6,7 @@
 #include <sstream>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
 #include "core/error.hpp"
@@ -126,6 +127,18 @@ double LidarOdometry::CorrectionLimit() const {
     return config_.max_correction_factor * std::max({rms, config_.VoxelSize(), config_.min_motion_th});
 }
 
+void LidarOdometry::ApplyMapUpdate() {
+    if (!map_update_pending_) return;
+    map_.AddPoints(points_in_world_);
+    map_.RemoveFarFrom(map_update_origin_, map_update_radius_);
+    map_update_pending_ = false;
+}
+
+const VoxelHashMap& LidarOdometry::LocalMap() {
+    ApplyMapUpdate();
+    return map_;
+}
+
 Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
     stats_ = OdometryFrameStats{};
     stats_.input_points = scan.points.size();
@@ -136,18 +149,27 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
 
     // Preprocessing, METHOD.md section 1: crop, deskew, downsample at 0.5 v and 1.5 v.
     // Parallel and into buffers kept between frames; the same points as CropRange / VoxelDownsample.
-    std::vector<std::size_t>& kept = kept_;
-    filter_.Crop(scan.points, config_.min_range, config_.max_range, deskewed_, config_.deskew ? &kept : nullptr);
+    // The previous frame's map update runs alongside this frame's range crop and downsampling: they
+    // share no data, and the update (partly serial: new voxels are numbered in input order) would
+    // otherwise leave the second thread idle. Both are done before ICP reads the map.
+    const auto preprocess = [&] {
+        std::vector<std::size_t>& kept = kept_;
+        filter_.Crop(scan.points, config_.min_range, config_.max_range, deskewed_, config_.deskew ? &kept : nullptr);
+        if (config_.deskew && !poses_.empty()) {
+            const std::vector<double> all_times = SweepTimes(scan, config_.azimuth_clockwise);
+            std::vector<double> times(kept.size());
+            for (std::size_t i = 0; i < kept.size(); ++i) times[i] = all_times[kept[i]];
+            deskewed_ = Deskew(deskewed_, times, delta);
+        }
+        filter_.Downsample(deskewed_, 0.5 * config_.VoxelSize(), downsampled_);
+        filter_.Downsample(downsampled_, 1.5 * config_.VoxelSize(), source_);
+    };
+    if (map_update_pending_)
+        tbb::parallel_invoke([&] { ApplyMapUpdate(); }, preprocess);
+    else
+        preprocess();
     stats_.cropped_points = deskewed_.size();
-    if (config_.deskew && !poses_.empty()) {
-        const std::vector<double> all_times = SweepTimes(scan, config_.azimuth_clockwise);
-        std::vector<double> times(kept.size());
-        for (std::size_t i = 0; i < kept.size(); ++i) times[i] = all_times[kept[i]];
-        deskewed_ = Deskew(deskewed_, times, delta);
-    }
     const double voxel = config_.VoxelSize();
-    filter_.Downsample(deskewed_, 0.5 * voxel, downsampled_);
-    filter_.Downsample(downsampled_, 1.5 * voxel, source_);
     const std::vector<Eigen::Vector3d>& source = source_;
     stats_.map_points = downsampled_.size();
     stats_.source_points = source.size();
@@ -229,8 +251,9 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, downsampled_.size(), 8192), [&](const auto& range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) points_in_world_[i] = T_new * downsampled_[i];
         });
-        map_.AddPoints(points_in_world_);
-        map_.RemoveFarFrom(T_new.translation(), config_.max_range);
+        map_update_pending_ = true;  // applied with the next frame's preprocessing (or on LocalMap())
+        map_update_origin_ = T_new.translation();
+        map_update_radius_ = config_.max_range;
     }
     last_delta_ = Orthonormalized(last_pose.inverse() * T_new);
     last_T_odom_sensor_ = scan.T_odom_sensor;

@@ -52,7 +52,8 @@ class LidarOdometry {
     /// The last scan's points after the 0.5 v downsampling (sensor frame).
     const std::vector<Eigen::Vector3d>& LastDownsampledPoints() const { return downsampled_; }
     const OdometryFrameStats& LastStats() const { return stats_; }
-    const VoxelHashMap& LocalMap() const { return map_; }
+    /// The local map with every registered frame in it.
+    const VoxelHashMap& LocalMap();
     const OdometryConfig& config() const { return config_; }
     /// Changes the range crop (and the map radius, the adaptive threshold's lever arm) from the next
     /// scan on; the map's voxels stay. For a scene whose scale changes (pipeline/scene_scale_watch.hpp).
@@ -66,6 +67,8 @@ class LidarOdometry {
     /// enabled and available, else the last registered motion (constant velocity).
     Eigen::Isometry3d PredictMotion(const Scan& scan);
     /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
+    /// Adds the last registered frame's points to the map and drops voxels beyond the range from it.
+    void ApplyMapUpdate();
     std::string DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const;
 
     /// Source points within `radius` of a map point when placed at `T_world_sensor` (every `stride`-th
@@ -90,6 +93,9 @@ class LidarOdometry {
     std::vector<std::size_t> kept_;                 ///< input index of each cropped point (deskew)
     std::vector<Eigen::Vector3d> source_;           ///< registration points (1.5 v)
     std::vector<Eigen::Vector3d> points_in_world_;  ///< map points of the frame, world frame
+    bool map_update_pending_ = false;               ///< points_in_world_ not yet in the map
+    Eigen::Vector3d map_update_origin_ = Eigen::Vector3d::Zero();  ///< [m] the frame's position
+    double map_update_radius_ = 0.0;                ///< [m] the range then
     OdometryFrameStats stats_;
     std::size_t num_degenerate_ = 0;
     double sum_squared_corrections_ = 0.0;  ///< [m^2] translation corrections of registered frames

@@ -1,5 +1,6 @@
 #include "odometry/parallel_filter.hpp"
 
+#include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -103,33 +104,44 @@ void ParallelFilter::Downsample(const std::vector<Eigen::Vector3d>& points, doub
         out = VoxelDownsample(points, voxel_size);
         return;
     }
+    // Contiguous chunks, one per thread: each finds the first point of every voxel within itself; a
+    // chunk's first is the global first unless an earlier chunk holds the voxel. No regrouping of the
+    // points (which costs two more passes over them), and the same result at any chunk count.
+    const std::size_t num_chunks = num_shards;
+    const auto chunk_begin = [&](std::size_t c) { return n * c / num_chunks; };
+    const auto voxel_of = [&](const Eigen::Vector3d& p) -> Voxel { return (p * inv_voxel_size).array().floor().cast<int>(); };
     keep_.resize(n);
-    voxels_.resize(n);
-    shards_.resize(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            voxels_[i] = (points[i] * inv_voxel_size).array().floor().cast<int>();
-            shards_[i] = static_cast<std::uint32_t>(ShardOf(voxels_[i], num_shards));
-        }
-    });
-    if (seen_.size() < num_shards) seen_.resize(num_shards);
-    groups_.Build(shards_, num_shards);
-    // One task per shard: it walks its points in order and decides the first point of its voxels.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_shards, 1), [&](const auto& range) {
-        for (std::size_t s = range.begin(); s != range.end(); ++s) {
-            auto& seen = seen_[s];
+    if (seen_.size() < num_chunks) seen_.resize(num_chunks);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks, 1), [&](const auto& range) {
+        for (std::size_t c = range.begin(); c != range.end(); ++c) {
+            auto& seen = seen_[c];
             seen.clear();  // keeps its buckets
-            seen.reserve(n / (2 * num_shards));
+            seen.reserve((chunk_begin(c + 1) - chunk_begin(c)) / 2);
             // Scan order puts neighbouring points next to each other: a point in the voxel of the
-            // shard's previous point is not the first of it, and needs no hash insertion.
-            const Voxel* previous = nullptr;
-            for (const std::uint32_t* it = groups_.begin(s); it != groups_.end(s); ++it) {
-                const Voxel& voxel = voxels_[*it];
-                keep_[*it] = !(previous && voxel == *previous) && seen.insert(voxel).second;
-                previous = &voxel;
+            // previous point is not the first of it, and needs no hash insertion.
+            Voxel previous(std::numeric_limits<int>::min(), 0, 0);
+            for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
+                const Voxel voxel = voxel_of(points[i]);
+                keep_[i] = voxel != previous && seen.insert(voxel).second;
+                previous = voxel;
             }
         }
     });
+    if (num_chunks > 1) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(chunk_begin(1), n, kChunk), [&](const auto& range) {
+            std::size_t c = 1;
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                if (!keep_[i]) continue;
+                while (i >= chunk_begin(c + 1)) ++c;
+                const Voxel voxel = voxel_of(points[i]);
+                for (std::size_t earlier = 0; earlier < c; ++earlier)
+                    if (seen_[earlier].count(voxel) != 0) {
+                        keep_[i] = 0;
+                        break;
+                    }
+            }
+        });
+    }
     out.resize(n);
     out.resize(Compact(n, [&](std::size_t i, std::size_t position) { out[position] = points[i]; }));
 }

@@ -30,21 +30,54 @@ double VoxelOverlap(const std::vector<Eigen::Vector3d>& a, const std::vector<Eig
 }
 
 
-PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_size)
-    : points_(points), cell_size_(cell_size) {
+PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_size) : cell_size_(cell_size) {
     RequirePositive(cell_size, "cell_size");
-    cells_.reserve(points_.size() / 2 + 1);
-    for (std::size_t i = 0; i < points_.size(); ++i) cells_[VoxelOf(points_[i], cell_size_)].push_back(static_cast<int>(i));
+    // Cells numbered by first appearance; counting sort keeps ascending indices within a cell.
+    std::vector<std::uint32_t> cell_of(points.size());
+    cells_.reserve(points.size() / 2 + 1);
+    std::vector<std::size_t> counts;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Voxel key = VoxelOf(points[i], cell_size_);
+        const auto [it, inserted] = cells_.try_emplace(key, static_cast<std::uint32_t>(cell_keys_.size()));
+        if (inserted) {
+            cell_keys_.push_back(key);
+            counts.push_back(0);
+        }
+        cell_of[i] = it->second;
+        ++counts[it->second];
+    }
+    offsets_.assign(cell_keys_.size() + 1, 0);
+    for (std::size_t c = 0; c < counts.size(); ++c) offsets_[c + 1] = offsets_[c] + counts[c];
+    std::vector<std::size_t> next(offsets_.begin(), offsets_.end() - 1);
+    sorted_points_.resize(points.size());
+    index_.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const std::size_t slot = next[cell_of[i]]++;
+        sorted_points_[slot] = points[i];
+        index_[slot] = static_cast<int>(i);
+    }
+}
+
+void PointGrid::NeighbourCells(std::size_t cell, double radius, std::vector<std::uint32_t>& cells) const {
+    cells.clear();
+    const int reach = Reach(radius);
+    const Voxel& center = cell_keys_[cell];
+    for (int dx = -reach; dx <= reach; ++dx)
+        for (int dy = -reach; dy <= reach; ++dy)
+            for (int dz = -reach; dz <= reach; ++dz) {
+                const auto found = cells_.find(center + Voxel(dx, dy, dz));
+                if (found != cells_.end()) cells.push_back(found->second);
+            }
 }
 
 int PointGrid::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
     int best = -1;
     double best_squared = max_distance * max_distance;
-    ForEachNeighbour(query, max_distance, [&](int index) {
-        const double squared = (points_[index] - query).squaredNorm();
+    ForEachNeighbourSlot(VoxelOf(query, cell_size_), max_distance, [&](std::size_t slot) {
+        const double squared = (sorted_points_[slot] - query).squaredNorm();
         if (squared <= best_squared) {
             best_squared = squared;
-            best = index;
+            best = index_[slot];
         }
     });
     return best;

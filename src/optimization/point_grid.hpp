@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <tsl/robin_map.h>
 #include <vector>
 
@@ -19,6 +20,10 @@ namespace revisit {
 double VoxelOverlap(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, double voxel_size);
 
 /// Points bucketed by a grid of cell edge `cell_size`; radius queries up to that edge.
+/// Compact layout: the points are copied cell after cell (ascending index within a cell) with one
+/// offset per cell, so a neighbourhood is a few contiguous runs and building costs no allocation per
+/// cell. Every query visits cells in the same (dx, dy, dz) order and a cell's points by index, so the
+/// answers do not depend on the layout.
 class PointGrid {
   public:
     PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_size);
@@ -32,33 +37,45 @@ class PointGrid {
     template <typename Visit>
     void ForEachWithin(const Eigen::Vector3d& query, double radius, Visit&& visit) const {
         const double radius_squared = radius * radius;
-        ForEachNeighbour(query, radius, [&](int index) {
-            if ((points_[index] - query).squaredNorm() <= radius_squared) visit(index);
+        ForEachNeighbourSlot(VoxelOf(query, cell_size_), radius, [&](std::size_t slot) {
+            if ((sorted_points_[slot] - query).squaredNorm() <= radius_squared) visit(index_[slot]);
         });
     }
 
-    const std::vector<Eigen::Vector3d>& points() const { return points_; }
+    /// Occupied cells, numbered 0..num_cells()-1.
+    std::size_t num_cells() const { return cell_keys_.size(); }
+    /// Indices of the points of cell `cell`, ascending: slots [CellBegin, CellEnd) of `index()`.
+    std::size_t CellBegin(std::size_t cell) const { return offsets_[cell]; }
+    std::size_t CellEnd(std::size_t cell) const { return offsets_[cell + 1]; }
+    /// The occupied cells within `radius` of cell `cell`, in the order every query visits them.
+    void NeighbourCells(std::size_t cell, double radius, std::vector<std::uint32_t>& cells) const;
+    /// The points in slot order, and each slot's index into the constructor's points.
+    const std::vector<Eigen::Vector3d>& sorted_points() const { return sorted_points_; }
+    const std::vector<int>& index() const { return index_; }
 
   private:
-    /// Visits every point of the cells within `radius` of the query's cell.
+    int Reach(double radius) const { return std::max(1, static_cast<int>(std::ceil(radius / cell_size_))); }
+    /// Visits every slot of the cells within `radius` of cell `center`.
     template <typename Visit>
-    void ForEachNeighbour(const Eigen::Vector3d& query, double radius, Visit&& visit) const {
-        const Voxel center = VoxelOf(query, cell_size_);
-        const int reach = std::max(1, static_cast<int>(std::ceil(radius / cell_size_)));
+    void ForEachNeighbourSlot(const Voxel& center, double radius, Visit&& visit) const {
+        const int reach = Reach(radius);
         for (int dx = -reach; dx <= reach; ++dx) {
             for (int dy = -reach; dy <= reach; ++dy) {
                 for (int dz = -reach; dz <= reach; ++dz) {
                     const auto cell = cells_.find(center + Voxel(dx, dy, dz));
                     if (cell == cells_.end()) continue;
-                    for (const int index : cell->second) visit(index);
+                    for (std::size_t slot = offsets_[cell->second]; slot < offsets_[cell->second + 1]; ++slot) visit(slot);
                 }
             }
         }
     }
 
-    std::vector<Eigen::Vector3d> points_;
     double cell_size_;
-    tsl::robin_map<Voxel, std::vector<int>, VoxelHash> cells_;  // open addressing: ~2x faster lookups than std::unordered_map
+    std::vector<Eigen::Vector3d> sorted_points_;
+    std::vector<int> index_;
+    std::vector<std::size_t> offsets_;  ///< num_cells() + 1
+    std::vector<Voxel> cell_keys_;
+    tsl::robin_map<Voxel, std::uint32_t, VoxelHash> cells_;  // open addressing: ~2x faster lookups than std::unordered_map
 };
 
 }  // namespace revisit

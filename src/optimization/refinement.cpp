@@ -90,30 +90,41 @@ bool AllAtOneHeight(const std::vector<Eigen::Vector3d>& a, const std::vector<Eig
 std::vector<Plane> EstimatePlanes(const std::vector<Eigen::Vector3d>& points, const RefinementConfig& config,
                                   const Eigen::Vector3d& in_plane_up) {
     const PointGrid grid(points, config.normal_radius);
+    const auto& sorted = grid.sorted_points();
+    const double radius_squared = config.normal_radius * config.normal_radius;
     std::vector<std::optional<Plane>> planes(points.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size()), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            // One pass, relative to the point itself (small numbers, no cancellation).
-            int count = 0;
-            Eigen::Vector3d sum_offset = Eigen::Vector3d::Zero();
-            Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
-            grid.ForEachWithin(points[i], config.normal_radius, [&](int j) {
-                const Eigen::Vector3d d = points[j] - points[i];
-                ++count;
-                sum_offset += d;
-                sum_outer.noalias() += d * d.transpose();
-            });
-            if (count < config.min_normal_neighbours) continue;
-            const Eigen::Vector3d mean = sum_offset / count;
-            Eigen::Matrix3d covariance = sum_outer / count - mean * mean.transpose();
-            // Planar: the vertical gets the largest eigenvalue, so the smallest is the in-plane normal.
-            const double vertical_weight = covariance.trace() + 1.0;
-            if (in_plane_up.squaredNorm() > 0.0) covariance += vertical_weight * in_plane_up * in_plane_up.transpose();
-            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-            double sum = solver.eigenvalues().sum();
-            if (in_plane_up.squaredNorm() > 0.0) sum -= vertical_weight;
-            if (!(sum > 0.0) || solver.eigenvalues()(0) / sum > config.max_surface_variation) continue;
-            planes[i] = Plane{points[i], solver.eigenvectors().col(0)};
+    // Cell by cell: the points of one cell share their 27 neighbour cells, looked up once. The sums run
+    // over the same points in the same order as a per-point radius query.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.num_cells()), [&](const auto& range) {
+        std::vector<std::uint32_t> neighbours;
+        for (std::size_t cell = range.begin(); cell != range.end(); ++cell) {
+            grid.NeighbourCells(cell, config.normal_radius, neighbours);
+            for (std::size_t own = grid.CellBegin(cell); own < grid.CellEnd(cell); ++own) {
+                const Eigen::Vector3d& point = sorted[own];
+                // One pass, relative to the point itself (small numbers, no cancellation).
+                int count = 0;
+                Eigen::Vector3d sum_offset = Eigen::Vector3d::Zero();
+                Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
+                for (const std::uint32_t other : neighbours)
+                    for (std::size_t slot = grid.CellBegin(other); slot < grid.CellEnd(other); ++slot) {
+                        const Eigen::Vector3d d = sorted[slot] - point;
+                        if (d.squaredNorm() > radius_squared) continue;
+                        ++count;
+                        sum_offset += d;
+                        sum_outer.noalias() += d * d.transpose();
+                    }
+                if (count < config.min_normal_neighbours) continue;
+                const Eigen::Vector3d mean = sum_offset / count;
+                Eigen::Matrix3d covariance = sum_outer / count - mean * mean.transpose();
+                // Planar: the vertical gets the largest eigenvalue, so the smallest is the in-plane normal.
+                const double vertical_weight = covariance.trace() + 1.0;
+                if (in_plane_up.squaredNorm() > 0.0) covariance += vertical_weight * in_plane_up * in_plane_up.transpose();
+                const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+                double sum = solver.eigenvalues().sum();
+                if (in_plane_up.squaredNorm() > 0.0) sum -= vertical_weight;
+                if (!(sum > 0.0) || solver.eigenvalues()(0) / sum > config.max_surface_variation) continue;
+                planes[std::size_t(grid.index()[own])] = Plane{point, solver.eigenvectors().col(0)};
+            }
         }
     });
     std::vector<Plane> kept;
@@ -124,10 +135,7 @@ std::vector<Plane> EstimatePlanes(const std::vector<Eigen::Vector3d>& points, co
 
 /// Nearest query plane within `gate` of each moved reference point (TBB, order kept).
 std::vector<Correspondence> FindCorrespondences(const std::vector<Eigen::Vector3d>& source, const std::vector<Plane>& planes,
-                                                const std::vector<Eigen::Vector3d>& plane_points,
-                                                const Eigen::Isometry3d& T_query_ref, double gate) {
-    // A grid with the gate as cell edge answers every query from 27 cells.
-    const PointGrid plane_grid(plane_points, gate);
+                                                const PointGrid& plane_grid, const Eigen::Isometry3d& T_query_ref, double gate) {
     std::vector<int> match(source.size(), -1);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size()), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) match[i] = plane_grid.FindNearest(T_query_ref * source[i], gate);
@@ -277,12 +285,23 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     std::vector<Eigen::Vector3d> solve_source;
     for (std::size_t i = 0; i < source.size(); i += stride) solve_source.push_back(source[i]);
 
+    // A grid with the gate as cell edge answers every query from 27 cells; rebuilt only while the gate
+    // shrinks (the first `gate_decay_iterations`).
+    std::optional<PointGrid> plane_grid;
+    double grid_gate = 0.0;
+    const auto grid_for = [&](double gate) -> const PointGrid& {
+        if (!plane_grid || gate != grid_gate) {
+            plane_grid.emplace(plane_points, gate);
+            grid_gate = gate;
+        }
+        return *plane_grid;
+    };
     std::vector<Correspondence> correspondences;
     for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
         // The gate shrinks from the guess' error scale to the fine threshold (coarse-to-fine).
         const double progress = std::min(1.0, static_cast<double>(iteration) / std::max(1, config.gate_decay_iterations));
         const double gate = config.initial_max_distance + progress * (config.max_correspondence_distance - config.initial_max_distance);
-        correspondences = FindCorrespondences(solve_source, planes, plane_points, result.T_query_ref, gate);
+        correspondences = FindCorrespondences(solve_source, planes, grid_for(gate), result.T_query_ref, gate);
         result.iterations = iteration + 1;
         if (static_cast<int>(correspondences.size()) < std::max(6, config.min_correspondences)) break;
         const Eigen::Isometry3d T_new = SolvePointToPlane(correspondences, result.T_query_ref, config);
@@ -295,7 +314,8 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
             break;
         }
     }
-    correspondences = FindCorrespondences(source, planes, plane_points, result.T_query_ref, config.max_correspondence_distance);
+    correspondences = FindCorrespondences(source, planes, grid_for(config.max_correspondence_distance), result.T_query_ref,
+                                          config.max_correspondence_distance);
     MeasureFit(correspondences, config, result);
     std::vector<Eigen::Vector3d> moved(source.size());
     for (std::size_t i = 0; i < source.size(); ++i) moved[i] = result.T_query_ref * source[i];
