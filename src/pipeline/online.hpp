@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "closures/detector.hpp"
 #include "closures/local_map.hpp"
@@ -74,6 +75,9 @@ class ClosurePipeline {
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
     void ApplyConsistency();
+    /// After a final optimization: closures the robust kernel weighted below graph_noise.min_weight leave
+    /// the graph (reported as rejected by it), and the graph is optimized without them.
+    void DropDownweighted();
     /// Lowers the odometry's rotation drift rate (consistency check and graph) to what the consistent
     /// closures show (ClosureConsistencyConfig::calibrate_drift) and checks the closures again.
     void CalibrateDrift();
@@ -98,6 +102,7 @@ class ClosurePipeline {
     Poses corrected_nodes_;  ///< after the last optimization
     std::vector<PoseGraphEdge> loop_edges_;
     std::vector<std::size_t> loop_edge_closure_;  ///< closures_ index of each loop edge
+    std::set<std::size_t> graph_rejected_;        ///< closures_ indices the final graph weighted below min_weight
     int accepted_since_optimization_ = 0;
     std::optional<SettingUpdate> drift_calibration_;
     std::map<std::string, StageTimer> timings_;
