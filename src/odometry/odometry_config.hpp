@@ -56,11 +56,11 @@ struct OdometryConfig {
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)
     bool use_prior = true;           ///< use Scan::T_odom_sensor increments (wheel odometry) as the motion guess when present
     /// Remove the prior's rotation bias per metre, measured against the registration (odometry/prior_bias.hpp).
-    /// Off by default: it makes the odometry better (radish intel's heading drift 4.3e-3 -> 2.6e-4 rad/m,
-    /// simulated indoor APE 0.26 -> 0.09 m), but on the simulated indoor worlds the closure check then
-    /// keeps a room matched one room along (README, "Known limitations"); fr079 gets fewer closures.
+    /// Off by default: it makes the radish maps crisper (intel's inner corridors, fr079's bend), but on
+    /// the simulated indoor worlds the closure check then keeps a lone room matched one room along
+    /// (README, "Known limitations").
     bool prior_bias_correction = false;
-    double prior_bias_window = 50.0;  ///< [m] of travel the bias estimate averages over
+    double prior_bias_window = 50.0;  ///< [m] of travel per block of the bias estimate (odometry/prior_bias.hpp)
     /// KITTI's 0.205 degree vertical-angle correction is NOT done here: it is a property of the
     /// data, applied by the reader (ReaderOptions::kitti_vertical_correction, configs/kitti.yaml).
     double degenerate_thickness = 0.02;  ///< [m] a frame whose points lie within this of a plane (3D) or line (planar) is degenerate

@@ -44,7 +44,7 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.use_prior", &o.use_prior, "", "use wheel odometry increments as the initial guess when present");
     s.Add("odometry.prior_bias_correction", &o.prior_bias_correction, "",
           "remove the prior's rotation bias per metre, measured against the registered increments (ICP keeps a share of a prior's turn error)");
-    s.Add("odometry.prior_bias_window", &o.prior_bias_window, "m", "travel the prior's bias estimate averages over", Range{0.1, 1e6});
+    s.Add("odometry.prior_bias_window", &o.prior_bias_window, "m", "travel per block of the prior's bias estimate (the mean of the last 8 blocks, when they agree)", Range{0.1, 1e6});
     s.Add("odometry.degenerate_thickness", &o.degenerate_thickness, "m", "points within this of a plane/line: degenerate frame", Range{0, 10});
 }
 

@@ -23,7 +23,10 @@ struct BiasedDrive {
 TEST(PriorRotationBias, FindsAndRemovesAPerMetreHeadingBias) {
     PriorRotationBias bias;
     EXPECT_EQ(Yaw(bias.Correct(BiasedDrive::Prior(0))), Yaw(BiasedDrive::Prior(0)));  // nothing known yet
-    for (int k = 0; k < 400; ++k) bias.Update(BiasedDrive::Prior(k), BiasedDrive::Truth(k));
+    // 3 blocks of 50 m (1,000 frames each) before anything is removed.
+    for (int k = 0; k < 2990; ++k) bias.Update(BiasedDrive::Prior(k), BiasedDrive::Truth(k));
+    EXPECT_TRUE(bias.RatePerMetre().isZero());
+    for (int k = 2990; k < 4000; ++k) bias.Update(BiasedDrive::Prior(k), BiasedDrive::Truth(k));
     EXPECT_NEAR(bias.RatePerMetre().z(), -BiasedDrive::kBias, 1e-9);
     EXPECT_NEAR(bias.RatePerMetre().head<2>().norm(), 0.0, 1e-12);
     EXPECT_NEAR(Yaw(bias.Correct(BiasedDrive::Prior(7))), Yaw(BiasedDrive::Truth(7)), 1e-9);
@@ -35,7 +38,7 @@ TEST(PriorRotationBias, ALeakyRegistrationStillConvergesToTheWholeBias) {
     // per frame falls from 10% of the bias to nearly nothing.
     PriorRotationBias bias;
     double first_error = 0.0, last_error = 0.0;
-    for (int k = 0; k < 2000; ++k) {
+    for (int k = 0; k < 20000; ++k) {
         const Eigen::Isometry3d guess = bias.Correct(BiasedDrive::Prior(k));
         const double leaked = 0.1 * (Yaw(guess) - Yaw(BiasedDrive::Truth(k)));
         const Eigen::Isometry3d registered = BiasedDrive::Truth(k) * PoseFromXYZRPY(0.0, 0.0, 0.0, 0.0, 0.0, leaked);
@@ -45,6 +48,25 @@ TEST(PriorRotationBias, ALeakyRegistrationStillConvergesToTheWholeBias) {
     }
     EXPECT_NEAR(first_error, 0.1 * BiasedDrive::kBias * 0.05, 1e-9);
     EXPECT_LT(last_error, 0.01 * first_error);
+}
+
+TEST(PriorRotationBias, AWanderingDisagreementIsNotABias) {
+    // The prior turns too far one way for 50 m, then the other way (mit-killian: per 50 m between -0.019
+    // and +0.021 rad/m): the blocks do not agree, nothing is removed.
+    PriorRotationBias bias;
+    for (int k = 0; k < 8000; ++k) {
+        const double sign = (k / 1000) % 2 ? -1.0 : 1.0;
+        const Eigen::Isometry3d prior = BiasedDrive::Truth(k) * PoseFromXYZRPY(0.0, 0.0, 0.0, 0.0, 0.0, sign * 0.02 * 0.05);
+        bias.Update(prior, BiasedDrive::Truth(k));
+        if (k > 3000) ASSERT_TRUE(bias.RatePerMetre().isZero()) << "frame " << k;
+    }
+    // Biased the same way in 3 of 4 blocks: mean / RMS = 0.5, still below the steadiness bar (0.7).
+    PriorRotationBias mostly;
+    for (int k = 0; k < 8500; ++k) {  // 8 blocks closed
+        const double sign = (k / 1000) % 4 == 3 ? -1.0 : 1.0;
+        mostly.Update(BiasedDrive::Truth(k) * PoseFromXYZRPY(0.0, 0.0, 0.0, 0.0, 0.0, sign * 0.02 * 0.05), BiasedDrive::Truth(k));
+    }
+    EXPECT_TRUE(mostly.RatePerMetre().isZero());
 }
 
 TEST(PriorRotationBias, DisabledChangesNothing) {

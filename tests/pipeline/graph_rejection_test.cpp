@@ -48,8 +48,8 @@ Poses OptimizeAcceptedOnly(const RunState& state, PipelineConfig config) {
 TEST(GraphRejection, AClosureTheGraphRejectsNoLongerMovesTheTrajectory) {
     const auto log_file = test::SharedData("radish/intel.rawlog");
     REVISIT_REQUIRE_DATA(log_file);
-    // With the prior's heading bias removed, intel's proximity pass registers two pairs that the graph
-    // then weights at 0.04 and 0.10 (measured).
+    // With the prior's heading bias removed, intel's closures include some the graph weights below 0.1
+    // (measured: 4 of 103 verified).
     PipelineConfig config = LoadConfig({}, {"odometry.prior_bias_correction=true", "output.write_report=false",
                                             "output.scan_context=false", "output.elevation_ablation=false"});
     ConfigureFromData(config, log_file);
@@ -74,7 +74,7 @@ TEST(GraphRejection, AClosureTheGraphRejectsNoLongerMovesTheTrajectory) {
         }
     }
     ASSERT_GE(rejected_by_graph, 1u) << "the case this test needs did not occur";
-    EXPECT_GE(accepted, 40u);  // measured 120
+    EXPECT_GE(accepted, 40u);  // measured 99
 
     const Poses expected = OptimizeAcceptedOnly(state, config);
     ASSERT_EQ(expected.size(), state.maps.size());
