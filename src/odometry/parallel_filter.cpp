@@ -1,6 +1,5 @@
 #include "odometry/parallel_filter.hpp"
 
-#include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -119,10 +118,10 @@ void ParallelFilter::Downsample(const std::vector<Eigen::Vector3d>& points, doub
             seen.reserve((chunk_begin(c + 1) - chunk_begin(c)) / 2);
             // Scan order puts neighbouring points next to each other: a point in the voxel of the
             // previous point is not the first of it, and needs no hash insertion.
-            Voxel previous(std::numeric_limits<int>::min(), 0, 0);
+            Voxel previous = Voxel::Zero();
             for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
                 const Voxel voxel = voxel_of(points[i]);
-                keep_[i] = voxel != previous && seen.insert(voxel).second;
+                keep_[i] = !(i > chunk_begin(c) && voxel == previous) && seen.insert(voxel).second;
                 previous = voxel;
             }
         }

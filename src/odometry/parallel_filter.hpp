@@ -1,8 +1,8 @@
 #pragma once
 /// Parallel, allocation-free per-frame filters of the odometry (issue 19: the serial steps made
 /// parallel). Every result is identical to the serial definition at any thread count: points keep
-/// their input order, and "the first point of a voxel" is decided by one thread per voxel walking
-/// the points in input order (voxels are split among threads by their hash, never the points).
+/// their input order, and "the first point of a voxel" is the first in input order (each thread finds
+/// the firsts of its contiguous chunk, then a chunk's first yields to any earlier chunk's).
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
@@ -56,11 +56,8 @@ class ParallelFilter {
     std::size_t Compact(std::size_t n, const Write& write);
 
     std::vector<std::uint8_t> keep_;                           ///< per input point
-    std::vector<Voxel> voxels_;                                ///< per input point
-    std::vector<std::uint32_t> shards_;                        ///< per input point
-    ShardGroups groups_;                                       ///< the points of each shard
     std::vector<std::size_t> chunk_offsets_;                   ///< output position of each chunk
-    std::vector<tsl::robin_set<Voxel, VoxelHash>> seen_;       ///< per shard
+    std::vector<tsl::robin_set<Voxel, VoxelHash>> seen_;       ///< per chunk of the downsampling
 };
 
 }  // namespace revisit
