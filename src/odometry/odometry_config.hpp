@@ -57,7 +57,7 @@ struct OdometryConfig {
     bool use_prior = true;           ///< use Scan::T_odom_sensor increments (wheel odometry) as the motion guess when present
     /// Remove the prior's rotation bias per metre, measured against the registration (odometry/prior_bias.hpp).
     /// Off by default: it makes the radish maps crisper (intel's inner corridors, fr079's bend), but on
-    /// the simulated indoor worlds the closure check then keeps a lone room matched one room along
+    /// the simulated indoor worlds the closure check then keeps a lone twin (a place that looks like another)
     /// (README, "Known limitations").
     bool prior_bias_correction = false;
     double prior_bias_window = 50.0;  ///< [m] of travel per block of the bias estimate (odometry/prior_bias.hpp)
