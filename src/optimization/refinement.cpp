@@ -12,6 +12,8 @@
 #include <deque>
 #include <limits>
 #include <optional>
+#include <tuple>
+#include <utility>
 #include <tsl/robin_set.h>
 
 #include "core/error.hpp"
@@ -22,10 +24,7 @@ namespace revisit {
 namespace {
 
 /// A query-map point usable as a plane: its position and unit normal.
-struct Plane {
-    Eigen::Vector3d point;
-    Eigen::Vector3d normal;
-};
+using Plane = RefinementQuery::Plane;
 
 struct Correspondence {
     Eigen::Vector3d source;  ///< reference-map point, in the reference frame
@@ -68,20 +67,18 @@ void Validate(const RefinementConfig& config) {
         throw ConfigError("refinement: max_iterations and max_solver_iterations must be >= 1");
 }
 
-/// True when every point of both maps lies at one height along `up` (a 2D laser's maps): a wall is
-/// then a line, whose 3D neighbourhood has two zero eigenvalues, and the smallest one's eigenvector
-/// may be the vertical, a normal that constrains nothing in the plane.
-bool AllAtOneHeight(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, const Eigen::Vector3d& up) {
-    if (up.squaredNorm() == 0.0) return false;
-    const Eigen::Vector3d unit_up = up.normalized();
+/// The lowest and highest point along `up` (unit). A 2D laser's maps have every point at one height: a
+/// wall is then a line, whose 3D neighbourhood has two zero eigenvalues, and the smallest one's
+/// eigenvector may be the vertical, a normal that constrains nothing in the plane.
+std::pair<double, double> HeightRange(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& unit_up) {
     double low = std::numeric_limits<double>::infinity(), high = -low;
-    for (const auto* points : {&a, &b})
-        for (const auto& p : *points) {
-            low = std::min(low, unit_up.dot(p));
-            high = std::max(high, unit_up.dot(p));
-        }
-    return high - low < 1e-6;
+    for (const auto& p : points) {
+        low = std::min(low, unit_up.dot(p));
+        high = std::max(high, unit_up.dot(p));
+    }
+    return {low, high};
 }
+constexpr double kOneHeight = 1e-6;  ///< [m] spread along up below which points lie at one height
 
 /// Planes of the query map: PCA normal of each point's neighbourhood, kept only where the
 /// neighbourhood is flat (surface variation, Pauly et al. 2002) and populated enough. With
@@ -257,22 +254,65 @@ int CeresThreadCount() {
     return static_cast<int>(std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
 }
 
+RefinementQuery::RefinementQuery(const std::vector<Eigen::Vector3d>& query_points_in_query, const RefinementConfig& config,
+                                 const Eigen::Vector3d& up_in_query)
+    : points_(VoxelDownsample(query_points_in_query, config.voxel_size)),
+      up_(up_in_query),
+      voxel_size_(config.voxel_size),
+      normal_radius_(config.normal_radius),
+      max_surface_variation_(config.max_surface_variation),
+      min_normal_neighbours_(config.min_normal_neighbours) {
+    Validate(config);
+    if (up_.squaredNorm() > 0.0) {
+        std::tie(low_, high_) = HeightRange(points_, up_.normalized());
+        planar_ = !points_.empty() && high_ - low_ < kOneHeight;
+    }
+    planes_ = EstimatePlanes(points_, config, planar_ ? Eigen::Vector3d(up_.normalized()) : Eigen::Vector3d::Zero());
+}
+
+bool RefinementQuery::MadeWith(const RefinementConfig& config) const {
+    return config.voxel_size == voxel_size_ && config.normal_radius == normal_radius_ &&
+           config.max_surface_variation == max_surface_variation_ && config.min_normal_neighbours == min_normal_neighbours_;
+}
+
 RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                                  const std::vector<Eigen::Vector3d>& query_points_in_query,
                                  const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config,
                                  const Eigen::Vector3d& up_in_query) {
     Validate(config);
+    if (ref_points_in_ref.empty() || query_points_in_query.empty()) {
+        RefinementResult result;
+        result.T_query_ref = T_query_ref_guess;
+        result.reason = "empty map";
+        return result;
+    }
+    return RefineAlignment(ref_points_in_ref, RefinementQuery(query_points_in_query, config, up_in_query), T_query_ref_guess,
+                           config);
+}
+
+RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_in_ref, const RefinementQuery& query,
+                                 const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config) {
+    Validate(config);
+    if (!query.MadeWith(config)) throw ConfigError("refinement: the prepared query map was made with other settings");
     RefinementResult result;
     result.T_query_ref = T_query_ref_guess;
-    if (ref_points_in_ref.empty() || query_points_in_query.empty()) {
+    if (ref_points_in_ref.empty() || query.points().empty()) {
         result.reason = "empty map";
         return result;
     }
     const auto source = VoxelDownsample(ref_points_in_ref, config.voxel_size);
-    const auto query_down = VoxelDownsample(query_points_in_query, config.voxel_size);
-    const bool planar = AllAtOneHeight(source, query_down, up_in_query);
-    const Eigen::Vector3d in_plane_up = planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero();
-    const auto planes = EstimatePlanes(query_down, config, in_plane_up);
+    const auto& query_down = query.points();
+    const Eigen::Vector3d& up_in_query = query.up();
+    // Planar when both maps lie at one height (the same one); the prepared planes assumed the query's own.
+    bool planar = false;
+    if (query.planar()) {
+        const auto [low, high] = HeightRange(source, up_in_query.normalized());
+        planar = std::max(high, query.high()) - std::min(low, query.low()) < kOneHeight;
+    }
+    std::vector<Plane> replanned;
+    if (planar != query.planar())
+        replanned = EstimatePlanes(query_down, config, planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero());
+    const std::vector<Plane>& planes = planar != query.planar() ? replanned : query.planes();
     std::vector<Eigen::Vector3d> plane_points;
     plane_points.reserve(planes.size());
     for (const auto& plane : planes) plane_points.push_back(plane.point);

@@ -66,6 +66,39 @@ struct RefinementResult {
 /// `max_correction_*` allow (the proximity pass retries those from a better estimate).
 inline constexpr const char* kCorrectionFromGuess = "correction from guess";
 
+/// The query map's share of a registration: downsampled to `voxel_size`, with its planes (normals from
+/// `normal_radius` neighbourhoods). The same for every reference registered onto this query map (the
+/// proximity pass registers up to `proximity.max_per_map` of them), so it can be prepared once.
+class RefinementQuery {
+  public:
+    struct Plane {
+        Eigen::Vector3d point;
+        Eigen::Vector3d normal;
+    };
+    RefinementQuery(const std::vector<Eigen::Vector3d>& query_points_in_query, const RefinementConfig& config,
+                    const Eigen::Vector3d& up_in_query = Eigen::Vector3d::UnitZ());
+
+    const std::vector<Eigen::Vector3d>& points() const { return points_; }
+    const std::vector<Plane>& planes() const { return planes_; }
+    const Eigen::Vector3d& up() const { return up_; }
+    /// The planes were taken within the plane orthogonal to `up` (every query point at one height).
+    bool planar() const { return planar_; }
+    /// The heights along `up` of the lowest and highest point (planar maps: equal).
+    double low() const { return low_; }
+    double high() const { return high_; }
+    /// Whether these planes are the ones `config` asks for.
+    bool MadeWith(const RefinementConfig& config) const;
+
+  private:
+    std::vector<Eigen::Vector3d> points_;
+    std::vector<Plane> planes_;
+    Eigen::Vector3d up_;
+    bool planar_ = false;
+    double low_ = 0.0, high_ = 0.0;
+    double voxel_size_, normal_radius_, max_surface_variation_;
+    int min_normal_neighbours_;
+};
+
 /// Registers the reference map onto the query map starting from `T_query_ref_guess`
 /// (the 2D closure pose lifted to 3D) and judges the result with the config's thresholds.
 /// `up_in_query`: the vertical in the query frame (its ground normal), for the vertical search.
@@ -75,6 +108,11 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
                                  const std::vector<Eigen::Vector3d>& query_points_in_query,
                                  const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config,
                                  const Eigen::Vector3d& up_in_query = Eigen::Vector3d::UnitZ());
+
+/// The same with the query map prepared (RefinementQuery), for several references onto one query map.
+/// Identical results.
+RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_in_ref, const RefinementQuery& query,
+                                 const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config);
 
 /// Ceres thread count that respects the caller's tbb::global_control.
 int CeresThreadCount();

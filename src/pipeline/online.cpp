@@ -201,7 +201,8 @@ std::size_t ClosurePipeline::AddProximityClosures() {
     const auto pairs = PredictOverlaps(footprints_, corrected_nodes_, FootprintCell(), p.min_overlap, p.max_per_map,
                                        [&](int query, int ref) { return query == ref + 1 || done.count({query, ref}) > 0; });
     std::size_t verified = 0;
-    std::vector<Eigen::Vector3f> query_points;  // pairs come grouped by query map: read each once
+    std::vector<Eigen::Vector3f> query_points;  // pairs come grouped by query map: read and prepare each once
+    std::optional<RefinementQuery> prepared;
     int query_loaded = -1;
     for (const auto& pair : pairs) {
         ClosureRecord record;
@@ -212,11 +213,14 @@ std::size_t ClosurePipeline::AddProximityClosures() {
         closure.query_scans = {maps_[std::size_t(pair.query)].first_scan, maps_[std::size_t(pair.query)].last_scan};
         closure.ref_scans = {maps_[std::size_t(pair.ref)].first_scan, maps_[std::size_t(pair.ref)].last_scan};
         closure.T_query_ref = (corrected_nodes_[std::size_t(pair.query)].inverse() * corrected_nodes_[std::size_t(pair.ref)]).matrix();
+        const MapRecord& query_map = detector_.maps()[std::size_t(pair.query)];
         if (pair.query != query_loaded) {
             query_points = store_->Get(pair.query);
             query_loaded = pair.query;
+            prepared.reset();
+            if (!query_points.empty()) prepared.emplace(ToDouble(query_points), confirm, UpInMap(query_map));
         }
-        Refine(record, query_points, detector_.maps()[std::size_t(pair.query)], confirm, false);
+        Refine(record, query_points, query_map, confirm, false, prepared ? &*prepared : nullptr);
         verified += record.refinement.accepted;
         closures_.push_back(std::move(record));
     }
@@ -238,13 +242,15 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
 }
 
 void ClosurePipeline::Refine(ClosureRecord& record, const std::vector<Eigen::Vector3f>& query_points,
-                             const MapRecord& query_map, const RefinementConfig& refinement, bool may_displace) {
+                             const MapRecord& query_map, const RefinementConfig& refinement, bool may_displace,
+                             const RefinementQuery* prepared) {
     const Closure& closure = record.closure;
     const auto start = std::chrono::steady_clock::now();
     const auto ref_points = store_->Get(closure.ref_id);
     // The query map's levelling gives the vertical along which the closure's height is searched.
-    record.refinement = RefineAlignment(ToDouble(ref_points), ToDouble(query_points), Eigen::Isometry3d(closure.T_query_ref),
-                                        refinement, UpInMap(query_map));
+    record.refinement = prepared ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), refinement)
+                                 : RefineAlignment(ToDouble(ref_points), ToDouble(query_points),
+                                                   Eigen::Isometry3d(closure.T_query_ref), refinement, UpInMap(query_map));
     Time("refinement", MillisecondsSince(start));
     record.refined = true;
     record.accepted = record.refinement.accepted;

@@ -65,9 +65,10 @@ class ClosurePipeline {
     PipelineUpdate ProcessMap(const LocalMap& map);
     ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points);
     /// Refines `record`'s closure against the stored reference map; a verified one enters the consistency
-    /// check (`may_displace`: see ClosureConsistency::Add).
+    /// check (`may_displace`: see ClosureConsistency::Add). `prepared`: the query map already prepared
+    /// for registration (the proximity pass registers several references onto one query map).
     void Refine(ClosureRecord& record, const std::vector<Eigen::Vector3f>& query_points, const MapRecord& query_map,
-                const RefinementConfig& refinement, bool may_displace);
+                const RefinementConfig& refinement, bool may_displace, const RefinementQuery* prepared = nullptr);
     /// One round of the proximity pass over the corrected poses; returns how many registrations were verified.
     std::size_t AddProximityClosures();
     double FootprintCell() const;  ///< [m] ground cells of the maps' footprints

@@ -166,6 +166,51 @@ TEST(RefineAlignment, RegistersPlanarMapsInThePlane) {
     EXPECT_GT(result.rms, 0.0);  // the in-plane distances are measured (a vertical normal measures 0)
 }
 
+/// The proximity pass prepares a query map once for several references: the same results, bit for bit,
+/// for 3D maps and for a 2D laser's (whose planes are taken in the plane only when both maps are flat).
+TEST(RefineAlignment, APreparedQueryMapGivesTheSameResults) {
+    const auto street = testing::SyntheticStreet(100.0, 20.0, 3);
+    const Eigen::Isometry3d T_street = PoseFromXYZRPY(-20.0, 3.0, 0.0, 0.0, 0.0, Degrees(-60.0));
+    const auto street_query = testing::Transform(T_street, testing::Subsample(street, 2, 1));
+    RefinementConfig planar_config;
+    planar_config.voxel_size = 0.1;
+    planar_config.normal_radius = 0.3;
+    planar_config.initial_max_distance = 1.0;
+    planar_config.max_correspondence_distance = 0.3;
+    planar_config.max_rms = 0.1;
+    planar_config.min_correspondences = 50;
+    const Eigen::Isometry3d T_floor = PoseFromXYZRPY(3.0, -2.0, 0.0, 0.0, 0.0, Degrees(25.0));
+    const auto floor_query = testing::Transform(T_floor, PlanarFloor(0.02, 2));
+    auto lifted = PlanarFloor(0.02, 1);  // the same floor, but not flat: a 3D reference onto a flat query
+    for (std::size_t i = 0; i < lifted.size(); i += 7) lifted[i].z() += 0.5;
+    struct Case {
+        std::vector<Eigen::Vector3d> ref, query;
+        Eigen::Isometry3d guess;
+        RefinementConfig config;
+    };
+    const std::vector<Case> cases = {
+        {testing::Subsample(street, 2, 0), street_query, T_street * IssuePerturbation(), RefinementConfig{}},
+        {PlanarFloor(0.02, 1), floor_query, T_floor * PoseFromXYZRPY(0.25, -0.15, 0.0, 0.0, 0.0, Degrees(3.0)), planar_config},
+        {lifted, floor_query, T_floor * PoseFromXYZRPY(0.25, -0.15, 0.0, 0.0, 0.0, Degrees(3.0)), planar_config}};
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const Case& c = cases[k];
+        const RefinementResult plain = RefineAlignment(c.ref, c.query, c.guess, c.config);
+        const RefinementQuery prepared(c.query, c.config);
+        EXPECT_EQ(prepared.planar(), k > 0) << "case " << k;
+        const RefinementResult reused = RefineAlignment(c.ref, prepared, c.guess, c.config);
+        EXPECT_TRUE(plain.T_query_ref.matrix() == reused.T_query_ref.matrix()) << "case " << k;
+        EXPECT_EQ(plain.overlap, reused.overlap) << "case " << k;
+        EXPECT_EQ(plain.rms, reused.rms) << "case " << k;
+        EXPECT_EQ(plain.num_correspondences, reused.num_correspondences) << "case " << k;
+        EXPECT_EQ(plain.accepted, reused.accepted) << "case " << k;
+        EXPECT_EQ(plain.reason, reused.reason) << "case " << k;
+    }
+    EXPECT_TRUE(RefineAlignment(cases[0].ref, cases[0].query, cases[0].guess, cases[0].config).accepted);
+    RefinementConfig other = cases[0].config;
+    other.normal_radius = 2.0;
+    EXPECT_THROW(RefineAlignment(cases[0].ref, RefinementQuery(cases[0].query, cases[0].config), cases[0].guess, other), ConfigError);
+}
+
 TEST(RefineAlignment, GivesTheSameResultWithOneThread) {
     const auto street = testing::SyntheticStreet(60.0, 10.0, 5);
     const auto ref_points = testing::Subsample(street, 2, 0);
