@@ -142,16 +142,22 @@ std::vector<Eigen::Vector3d> PlanarFloor(double spacing, std::uint32_t seed) {
     return points;
 }
 
-TEST(RefineAlignment, RegistersPlanarMapsInThePlane) {
-    // Two samplings of one floor, 0.3 m and 3 deg apart: a wall's 3D neighbourhood is a line whose
-    // smallest eigenvector may be the vertical; the planar normals must still pull x, y and yaw.
-    RefinementConfig config;  // the 2D laser proportions of the data-derived settings (0.05 m voxels)
+/// The 2D laser proportions of the data-derived settings (0.05 m voxels).
+RefinementConfig PlanarLaserConfig() {
+    RefinementConfig config;
     config.voxel_size = 0.1;
     config.normal_radius = 0.3;
     config.initial_max_distance = 1.0;
     config.max_correspondence_distance = 0.3;
     config.max_rms = 0.1;
     config.min_correspondences = 50;
+    return config;
+}
+
+TEST(RefineAlignment, RegistersPlanarMapsInThePlane) {
+    // Two samplings of one floor, 0.3 m and 3 deg apart: a wall's 3D neighbourhood is a line whose
+    // smallest eigenvector may be the vertical; the planar normals must still pull x, y and yaw.
+    const RefinementConfig config = PlanarLaserConfig();
     const auto ref_points = PlanarFloor(0.02, 1);
     const Eigen::Isometry3d T_query_ref_true = PoseFromXYZRPY(3.0, -2.0, 0.0, 0.0, 0.0, Degrees(25.0));
     const auto query_points = testing::Transform(T_query_ref_true, PlanarFloor(0.02, 2));
@@ -172,13 +178,7 @@ TEST(RefineAlignment, APreparedQueryMapGivesTheSameResults) {
     const auto street = testing::SyntheticStreet(100.0, 20.0, 3);
     const Eigen::Isometry3d T_street = PoseFromXYZRPY(-20.0, 3.0, 0.0, 0.0, 0.0, Degrees(-60.0));
     const auto street_query = testing::Transform(T_street, testing::Subsample(street, 2, 1));
-    RefinementConfig planar_config;
-    planar_config.voxel_size = 0.1;
-    planar_config.normal_radius = 0.3;
-    planar_config.initial_max_distance = 1.0;
-    planar_config.max_correspondence_distance = 0.3;
-    planar_config.max_rms = 0.1;
-    planar_config.min_correspondences = 50;
+    const RefinementConfig planar_config = PlanarLaserConfig();
     const Eigen::Isometry3d T_floor = PoseFromXYZRPY(3.0, -2.0, 0.0, 0.0, 0.0, Degrees(25.0));
     const auto floor_query = testing::Transform(T_floor, PlanarFloor(0.02, 2));
     auto lifted = PlanarFloor(0.02, 1);  // the same floor, but not flat: a 3D reference onto a flat query
