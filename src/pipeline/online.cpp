@@ -287,8 +287,8 @@ void ClosurePipeline::DropDownweighted() {
     // The robust kernel has turned these nearly off; say so instead of calling them accepted, and
     // optimize again without them: nearly off is not off (a weight of 0.1 still pulled one simulated
     // corridor 10 m along), and the corrected trajectory, which the proximity pass starts from, must
-    // follow only the accepted closures.
-    for (int round = 0; round < 3; ++round) {
+    // follow only the accepted closures. Each round drops at least one edge, so this ends.
+    while (true) {
         bool dropped = false;
         for (std::size_t i = 0; i < loop_edges_.size(); ++i) {
             ClosureRecord& record = closures_[loop_edge_closure_[i]];
