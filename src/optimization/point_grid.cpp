@@ -60,14 +60,7 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_siz
 
 void PointGrid::NeighbourCells(std::size_t cell, double radius, std::vector<std::uint32_t>& cells) const {
     cells.clear();
-    const int reach = Reach(radius);
-    const Voxel& center = cell_keys_[cell];
-    for (int dx = -reach; dx <= reach; ++dx)
-        for (int dy = -reach; dy <= reach; ++dy)
-            for (int dz = -reach; dz <= reach; ++dz) {
-                const auto found = cells_.find(center + Voxel(dx, dy, dz));
-                if (found != cells_.end()) cells.push_back(found->second);
-            }
+    ForEachNeighbourCell(cell_keys_[cell], radius, [&](std::uint32_t neighbour) { cells.push_back(neighbour); });
 }
 
 int PointGrid::FindNearest(const Eigen::Vector3d& query, double max_distance) const {

@@ -55,19 +55,25 @@ class PointGrid {
 
   private:
     int Reach(double radius) const { return std::max(1, static_cast<int>(std::ceil(radius / cell_size_))); }
-    /// Visits every slot of the cells within `radius` of cell `center`.
+    /// Calls visit(cell) for every occupied cell within `radius` of cell `center`, in (dx, dy, dz) order.
     template <typename Visit>
-    void ForEachNeighbourSlot(const Voxel& center, double radius, Visit&& visit) const {
+    void ForEachNeighbourCell(const Voxel& center, double radius, Visit&& visit) const {
         const int reach = Reach(radius);
         for (int dx = -reach; dx <= reach; ++dx) {
             for (int dy = -reach; dy <= reach; ++dy) {
                 for (int dz = -reach; dz <= reach; ++dz) {
                     const auto cell = cells_.find(center + Voxel(dx, dy, dz));
-                    if (cell == cells_.end()) continue;
-                    for (std::size_t slot = offsets_[cell->second]; slot < offsets_[cell->second + 1]; ++slot) visit(slot);
+                    if (cell != cells_.end()) visit(cell->second);
                 }
             }
         }
+    }
+    /// Visits every slot of the cells within `radius` of cell `center`.
+    template <typename Visit>
+    void ForEachNeighbourSlot(const Voxel& center, double radius, Visit&& visit) const {
+        ForEachNeighbourCell(center, radius, [&](std::uint32_t cell) {
+            for (std::size_t slot = offsets_[cell]; slot < offsets_[cell + 1]; ++slot) visit(slot);
+        });
     }
 
     double cell_size_;
