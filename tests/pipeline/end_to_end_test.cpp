@@ -13,6 +13,7 @@
 #include "pipeline/pipeline.hpp"
 #include "pipeline/report_builder.hpp"
 #include "pipeline/run_files.hpp"
+#include "pipeline_run.hpp"
 #include "sim_dataset.hpp"
 
 namespace revisit {
@@ -143,13 +144,7 @@ TEST(EndToEnd, RealRadishRobustDetectorFindsMoreConsistentClosuresThanThePaperSe
         std::vector<std::string> files{(configs / "indoor2d.yaml").string()};
         if (paper) files.push_back((configs / "paper-detector.yaml").string());
         const PipelineConfig config = LoadConfig(files, overrides);
-        test::TempDir out;
-        RunOptions options;
-        options.dataset = log_file;
-        options.out = out / "run";
-        options.quiet = true;
-        std::ostringstream log;
-        const RunState state = RunPipeline(options, config, log);
+        const RunState state = test::RunQuietly(log_file, config);
         accepted[paper] = state.NumAccepted();
         maps[paper] = state.maps.size();
         for (const auto& record : state.closures) {

@@ -4,12 +4,9 @@
 /// called it rejected.
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include "optimization/pose_graph.hpp"
 #include "pipeline/auto_settings.hpp"
-#include "pipeline/pipeline.hpp"
-#include "test_data.hpp"
+#include "pipeline_run.hpp"
 
 namespace revisit {
 namespace {
@@ -53,13 +50,7 @@ TEST(GraphRejection, AClosureTheGraphRejectsNoLongerMovesTheTrajectory) {
     PipelineConfig config = LoadConfig({}, {"odometry.prior_bias_correction=true", "output.write_report=false",
                                             "output.scan_context=false", "output.elevation_ablation=false"});
     ConfigureFromData(config, log_file);
-    test::TempDir out;
-    RunOptions options;
-    options.dataset = log_file;
-    options.out = out / "run";
-    options.quiet = true;
-    std::ostringstream log;
-    const RunState state = RunPipeline(options, config, log);
+    const RunState state = test::RunQuietly(log_file, config);
 
     std::size_t rejected_by_graph = 0, accepted = 0;
     for (const auto& record : state.closures) {
