@@ -66,9 +66,9 @@ class LidarOdometry {
     /// Motion expected from the previous pose to this scan: wheel odometry increment when
     /// enabled and available, else the last registered motion (constant velocity).
     Eigen::Isometry3d PredictMotion(const Scan& scan);
-    /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
     /// Adds the last registered frame's points to the map and drops voxels beyond the range from it.
     void ApplyMapUpdate();
+    /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
     std::string DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const;
 
     /// Source points within `radius` of a map point when placed at `T_world_sensor` (every `stride`-th

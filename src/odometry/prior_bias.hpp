@@ -9,8 +9,9 @@
 /// against the scan matching): 9% of that bias survived registration, a heading drift of 4.3e-3 rad/m in
 /// the odometry. The bias is a property of the platform (unequal wheel radii: per metre of travel), so it
 /// is estimated from the data as the registered-minus-prior rotation per metre of prior travel, in
-/// blocks of travel, and the prior is corrected by it when the blocks agree (a steady bias). Fixed point: the corrected prior's residual bias
-/// shrinks to zero even though each registration keeps a share of it.
+/// blocks of travel, and the prior is corrected by it when the blocks agree (a steady bias). Fixed
+/// point: the corrected prior's residual bias shrinks to zero even though each registration keeps a
+/// share of it.
 #include <Eigen/Geometry>
 #include <deque>
 #include <utility>

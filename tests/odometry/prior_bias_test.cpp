@@ -58,7 +58,9 @@ TEST(PriorRotationBias, AWanderingDisagreementIsNotABias) {
         const double sign = (k / 1000) % 2 ? -1.0 : 1.0;
         const Eigen::Isometry3d prior = BiasedDrive::Truth(k) * PoseFromXYZRPY(0.0, 0.0, 0.0, 0.0, 0.0, sign * 0.02 * 0.05);
         bias.Update(prior, BiasedDrive::Truth(k));
-        if (k > 3000) ASSERT_TRUE(bias.RatePerMetre().isZero()) << "frame " << k;
+        if (k > 3000) {
+            ASSERT_TRUE(bias.RatePerMetre().isZero()) << "frame " << k;
+        }
     }
     // Biased the same way in 3 of 4 blocks: mean / RMS = 0.5, still below the steadiness bar (0.7).
     PriorRotationBias mostly;
