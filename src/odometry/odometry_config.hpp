@@ -55,11 +55,10 @@ struct OdometryConfig {
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)
     bool use_prior = true;           ///< use Scan::T_odom_sensor increments (wheel odometry) as the motion guess when present
-    /// Remove the prior's rotation bias per metre, measured against the registration (odometry/prior_bias.hpp).
-    /// Off by default: it makes the radish maps crisper (intel's inner corridors, fr079's bend), but on
-    /// the simulated indoor worlds the closure check then keeps a lone twin (a place that looks like another)
-    /// (README, "Known limitations").
-    bool prior_bias_correction = false;
+    /// Remove the prior's rotation bias per metre, measured against the registration (odometry/prior_bias.hpp),
+    /// once its blocks agree (a platform's steady bias): the radish maps' walls single (intel's inner
+    /// corridors, fr079's bend). No effect without a prior.
+    bool prior_bias_correction = true;
     double prior_bias_window = 50.0;  ///< [m] of travel per block of the bias estimate (odometry/prior_bias.hpp)
     /// KITTI's 0.205 degree vertical-angle correction is NOT done here: it is a property of the
     /// data, applied by the reader (ReaderOptions::kitti_vertical_correction, configs/kitti.yaml).

@@ -19,7 +19,7 @@
 namespace revisit {
 
 struct PriorBiasConfig {
-    bool enabled = true;         ///< (the odometry's switch is OdometryConfig::prior_bias_correction, off by default)
+    bool enabled = true;         ///< (the odometry's switch is OdometryConfig::prior_bias_correction, on by default)
     double window = 50.0;        ///< [m] of prior travel per block: each block measures one rate
     int blocks = 8;              ///< the estimate is the mean rate of the last this many blocks
     int min_blocks = 3;          ///< nothing is removed before this many blocks

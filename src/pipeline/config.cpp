@@ -175,6 +175,10 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("proximity.min_overlap", &prox.min_overlap, "",
           "predicted share of the smaller map's ground cells (1/20 of a map length) from which a pair is registered", Range{0, 1});
     s.Add("proximity.max_per_map", &prox.max_per_map, "", "registrations per map and round, largest predicted overlap first", Range{0, 100000});
+    s.Add("proximity.odometry_check_below", &prox.odometry_check_below, "",
+          "with fewer consistent detector closures, first register the maps the odometry overlays; they may displace "
+          "the detector's (0: never)",
+          Range{0, 100000});
 }
 
 void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {

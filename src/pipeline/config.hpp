@@ -54,6 +54,10 @@ struct ProximityConfig {
     /// length) from which a pair is registered.
     double min_overlap = 0.3;
     int max_per_map = 3;        ///< registrations per map and round, largest predicted overlap first (cost bound)
+    /// With fewer consistent detector closures than this, the pass first registers the maps the odometry
+    /// itself lays over each other, and those closures may displace the detector's (README: the odometry's
+    /// own overlays); 0: never.
+    int odometry_check_below = 3;
 };
 
 struct OutputConfig {

@@ -69,8 +69,11 @@ class ClosurePipeline {
     /// for registration (the proximity pass registers several references onto one query map).
     void Refine(ClosureRecord& record, const std::vector<Eigen::Vector3f>& query_points, const MapRecord& query_map,
                 const RefinementConfig& refinement, bool may_displace, const RefinementQuery* prepared = nullptr);
-    /// One round of the proximity pass over the corrected poses; returns how many registrations were verified.
-    std::size_t AddProximityClosures();
+    /// One round of the proximity pass over the corrected poses (`from_odometry`: over the odometry's, and its
+    /// closures may displace the detector's); returns how many registrations were verified.
+    std::size_t AddProximityClosures(bool from_odometry = false);
+    /// Before the final optimization: with few consistent closures, the odometry's own overlays check them.
+    void CheckAgainstOdometryOverlays();
     double FootprintCell() const;  ///< [m] ground cells of the maps' footprints
     /// Why verified closure k (of the consistency check) was dropped against the odometry alone.
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
@@ -104,6 +107,7 @@ class ClosurePipeline {
     std::vector<PoseGraphEdge> loop_edges_;
     std::vector<std::size_t> loop_edge_closure_;  ///< closures_ index of each loop edge
     std::set<std::size_t> graph_rejected_;        ///< closures_ indices the final graph weighted below min_weight
+    std::set<std::size_t> odometry_overlay_;      ///< closures_ indices registered from the odometry's overlay
     int accepted_since_optimization_ = 0;
     std::optional<SettingUpdate> drift_calibration_;
     std::map<std::string, StageTimer> timings_;

@@ -171,7 +171,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
         entry.reached_threshold = record.refined;
         entry.verified = record.refined && record.refinement.accepted;
         entry.reason = record.accepted ? "accepted (graph weight " + FormatNumber(record.graph_weight, 2) + ")" : record.reason;
-        if (proximity) entry.reason = "proximity pass (the corrected poses overlay the maps): " + entry.reason;
+        if (proximity) entry.reason = "proximity pass (the corrected poses or the odometry overlay the maps): " + entry.reason;
         if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first}))
             entry.reason += ", FALSE against the reference poses";
         if (record.refined) {

@@ -65,7 +65,7 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
         << "  closures          " << density << " detected (>= 3 inliers), " << refined << " refined in 3D, " << verified
         << " verified, " << accepted << " accepted by the pose graph\n";
     if (proximity > 0) {
-        out << "  proximity pass    " << proximity << " map pairs the corrected poses overlay registered, " << proximity_verified
+        out << "  proximity pass    " << proximity << " map pairs the corrected poses (or the odometry) overlay registered, " << proximity_verified
             << " verified, " << proximity_accepted << " accepted\n";
     }
     out
