@@ -8,6 +8,9 @@
 #include <fstream>
 #include <iomanip>
 
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
 #include "closures/database_io.hpp"
 #include "core/allocator.hpp"
 #include "core/atomic_file.hpp"
@@ -28,6 +31,8 @@ namespace revisit {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kShownFallbacks = 10;  ///< odometry fallbacks shown one by one; all are in run.json
+/// Scans between the odometry and the closure pipeline: the odometry runs ahead while a map closes.
+constexpr std::size_t kScansInFlight = 4;
 
 std::size_t PeakRssKb() {
     rusage usage{};
@@ -36,6 +41,14 @@ std::size_t PeakRssKb() {
 }
 
 namespace {
+
+/// A scan with its pose, on its way from the odometry to the closure pipeline.
+struct PosedScan {
+    std::size_t position = 0;  ///< among the scans processed
+    std::vector<Eigen::Vector3f> points;  ///< in the sensor frame (deskewed by the odometry)
+    Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+    std::vector<std::string> messages;  ///< printed with the progress, in order
+};
 
 const char* PoseSourceName(PoseSource source) {
     switch (source) {
@@ -189,54 +202,67 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         t.total_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         t.count++;
     };
+    // Two stages in order (issue 19): the odometry of a scan runs while the closure pipeline takes the
+    // scans before it, on the same TBB threads (`--threads`). The odometry never reads what the closure
+    // pipeline does, and each stage sees the scans in input order: the results are those of a loop.
+    // Each stage's own parallel loops are isolated, so a thread waiting inside one never picks up the
+    // other stage's work (a map's detection and verification take ~100 ms).
     std::size_t accepted = 0;
     auto read_start = Clock::now();
-    while (auto scan = reader->Next()) {
+    const auto next_scan = [&](tbb::flow_control& flow) -> PosedScan {
+        PosedScan posed;
+        std::optional<Scan> scan;
+        while ((scan = reader->Next()) && scan->index < options.from) {}
         time("read", read_start);
-        if (InterruptRequested()) break;
-        if (scan->index < options.from) continue;
-        if (options.to && scan->index > *options.to) break;
-        const std::size_t position = state.odometry.size();
-        Eigen::Isometry3d T_world_sensor;
-        std::vector<Eigen::Vector3f> points;
+        if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {
+            flow.stop();
+            return posed;
+        }
+        posed.position = state.odometry.size();
         const auto odometry_start = Clock::now();
         if (odometry) {
-            T_world_sensor = odometry->RegisterScan(*scan);
-            points = ToFloat(odometry->LastDeskewedPoints());
+            tbb::this_task_arena::isolate([&] { posed.T_world_sensor = odometry->RegisterScan(*scan); });
+            posed.points = ToFloat(odometry->LastDeskewedPoints());
             if (odometry->LastStats().degenerate) {
-                state.odometry_fallbacks.push_back(position);
-                if (state.odometry_fallbacks.size() <= kShownFallbacks) progress.Message("warning: " + odometry->LastStats().warning);
+                state.odometry_fallbacks.push_back(posed.position);
+                if (state.odometry_fallbacks.size() <= kShownFallbacks) posed.messages.push_back("warning: " + odometry->LastStats().warning);
             }
-            if (auto update = scene_scale.Follow(position, *scan, *odometry)) {
-                progress.Message(DescribeUpdate(*update));
+            if (auto update = scene_scale.Follow(posed.position, *scan, *odometry)) {
+                posed.messages.push_back(DescribeUpdate(*update));
                 state.setting_updates.push_back(std::move(*update));
             }
             time("odometry", odometry_start);
         } else if (options.poses == PoseSource::kDataset) {
             if (!scan->T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan->index) +
                                                                                " has no reference pose; use --poses odometry");
-            T_world_sensor = *scan->T_world_sensor;
-            points = std::move(scan->points);
+            posed.T_world_sensor = *scan->T_world_sensor;
+            posed.points = std::move(scan->points);
         } else {
             if (scan->index >= pose_file.size()) {
                 throw DatasetError(options.poses_file, "has " + std::to_string(pose_file.size()) + " poses; scan " +
                                                            std::to_string(scan->index) + " has none");
             }
-            T_world_sensor = pose_file.poses[scan->index];
-            points = std::move(scan->points);
+            posed.T_world_sensor = pose_file.poses[scan->index];
+            posed.points = std::move(scan->points);
         }
         state.timestamps.push_back(scan->timestamp);
-        state.odometry.push_back(T_world_sensor);
+        state.odometry.push_back(posed.T_world_sensor);
         const auto reference = ground_truth.active() ? std::optional(ground_truth.At(scan->index, scan->timestamp))
                                                      : scan->T_world_sensor;
         if (reference && reference_complete) state.reference.push_back(*reference);
         else reference_complete = false;
-        const auto update = pipeline.AddScan(position, points, T_world_sensor);
-        for (const auto& c : update.closures) accepted += c.accepted;
-        progress.Update(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
-                                                   std::to_string(accepted));
         read_start = Clock::now();
-    }
+        return posed;
+    };
+    const auto close_maps = [&](PosedScan posed) {
+        for (const auto& line : posed.messages) progress.Message(line);
+        tbb::this_task_arena::isolate([&] {
+            for (const auto& c : pipeline.AddScan(posed.position, posed.points, posed.T_world_sensor).closures) accepted += c.accepted;
+        });
+        progress.Update(posed.position + 1, "maps " + std::to_string(pipeline.maps().size()) + "  closures " + std::to_string(accepted));
+    };
+    tbb::parallel_pipeline(kScansInFlight, tbb::make_filter<void, PosedScan>(tbb::filter_mode::serial_in_order, next_scan) &
+                                               tbb::make_filter<PosedScan, void>(tbb::filter_mode::serial_in_order, close_maps));
     state.complete = !InterruptRequested();
     state.truncated = reader->Info().truncated;
     if (state.odometry.empty() && state.complete) {
