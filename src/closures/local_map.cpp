@@ -9,7 +9,7 @@ namespace revisit {
 LocalMapper::LocalMapper(const LocalMapConfig& config) : config_(config) {}
 
 Eigen::Vector3i LocalMapper::KeyOf(const Eigen::Vector3f& point_in_map) const {
-    return (point_in_map / float(config_.voxel_size)).array().floor().cast<int>();
+    return FloorVoxel(Eigen::Vector3f(point_in_map / float(config_.voxel_size)));
 }
 
 void LocalMapper::Insert(const Eigen::Vector3f& point_in_map) {

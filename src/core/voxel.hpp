@@ -27,9 +27,25 @@ struct MixedVoxelHash {
     }
 };
 
+/// std::floor(x) as an int, for |x| < 2^31 (2^31 voxels of 5 cm are 100,000 km): the truncation, one
+/// less below zero when x was not whole. The same value as the library floor and the cast, without
+/// the floor's range test, which kept the per-point loops from pipelining (issue 19: the voxel index
+/// was ~40% of a downsampling on KITTI scans, -18% for the whole downsampling).
+template <typename Scalar>
+inline int FloorToInt(Scalar x) {
+    const int truncated = static_cast<int>(x);
+    return truncated - static_cast<int>(x < static_cast<Scalar>(truncated));
+}
+
+/// The voxel of a point already scaled to voxel units (divided by the edge, or times its inverse).
+template <typename Scalar>
+inline Voxel FloorVoxel(const Eigen::Matrix<Scalar, 3, 1>& scaled) {
+    return Voxel(FloorToInt(scaled.x()), FloorToInt(scaled.y()), FloorToInt(scaled.z()));
+}
+
 /// Integer voxel coordinates of a point for a voxel edge `voxel_size` [m].
 inline Voxel VoxelOf(const Eigen::Vector3d& point, double voxel_size) {
-    return (point / voxel_size).array().floor().cast<int>();
+    return FloorVoxel(Eigen::Vector3d(point / voxel_size));
 }
 
 /// One point per voxel of edge `voxel_size` [m]: the first one met, so the result is deterministic

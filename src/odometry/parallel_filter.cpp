@@ -1,6 +1,7 @@
 #include "odometry/parallel_filter.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -17,7 +18,11 @@ constexpr std::size_t kMinParallel = 4096;
 
 std::size_t NumShards(std::size_t n) {
     if (n < kMinParallel) return 1;
-    return static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+    // The arena's concurrency ignores a tbb::global_control limit (`--threads 1` still reports every
+    // core), and the parallel paths cost a single thread more than the serial ones (KITTI: 5.1 against
+    // 3.7 ms of odometry per scan).
+    const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    return std::min(allowed, static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency())));
 }
 
 void ShardGroups::Build(const std::vector<std::uint32_t>& shards, std::size_t num_shards) {
@@ -108,7 +113,7 @@ void ParallelFilter::Downsample(const std::vector<Eigen::Vector3d>& points, doub
     // points (which costs two more passes over them), and the same result at any chunk count.
     const std::size_t num_chunks = num_shards;
     const auto chunk_begin = [&](std::size_t c) { return n * c / num_chunks; };
-    const auto voxel_of = [&](const Eigen::Vector3d& p) -> Voxel { return (p * inv_voxel_size).array().floor().cast<int>(); };
+    const auto voxel_of = [&](const Eigen::Vector3d& p) -> Voxel { return FloorVoxel(Eigen::Vector3d(p * inv_voxel_size)); };
     keep_.resize(n);
     if (seen_.size() < num_chunks) seen_.resize(num_chunks);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks, 1), [&](const auto& range) {

@@ -247,8 +247,8 @@ template <typename SlotOf>
 const Eigen::Vector3d* VoxelHashMap::Search(const Eigen::Vector3d& query, double max_distance, const SlotOf& slot_of,
                                             double* other2) const {
     const Eigen::Vector3d scaled = query * inv_voxel_size_;
-    const Eigen::Vector3d floor = scaled.array().floor();
-    const Voxel centre = floor.cast<int>();
+    const Voxel centre = FloorVoxel(scaled);
+    const Eigen::Vector3d floor = centre.cast<double>();
     // Squared distance from the query to the lower and upper neighbour voxel along each axis.
     const Eigen::Vector3d below = (scaled - floor) * voxel_size_;
     const Eigen::Vector3d above = Eigen::Vector3d::Constant(voxel_size_) - below;

@@ -17,7 +17,7 @@ namespace revisit {
 /// Integer voxel coordinates of a point for a given inverse voxel size [1/m] (a multiplication
 /// instead of core's division: this runs for every neighbour query of the ICP).
 inline Voxel VoxelOfInverse(const Eigen::Vector3d& point, double inv_voxel_size) {
-    return (point * inv_voxel_size).array().floor().cast<int>();
+    return FloorVoxel(Eigen::Vector3d(point * inv_voxel_size));
 }
 
 class VoxelHashMap {
