@@ -11,7 +11,6 @@
 #include "core/trajectory.hpp"
 #include "odometry/adaptive_threshold.hpp"
 #include "odometry/odometry_config.hpp"
-#include "odometry/parallel_filter.hpp"
 #include "odometry/prior_bias.hpp"
 #include "odometry/voxel_hash_map.hpp"
 
@@ -89,7 +88,6 @@ class LidarOdometry {
     std::vector<Eigen::Vector3d> deskewed_;
     std::vector<Eigen::Vector3d> downsampled_;
     // Per-frame buffers kept between frames (issue 19: no allocation per scan).
-    ParallelFilter filter_;
     std::vector<std::size_t> kept_;                 ///< input index of each cropped point (deskew)
     std::vector<Eigen::Vector3d> source_;           ///< registration points (1.5 v)
     std::vector<Eigen::Vector3d> points_in_world_;  ///< map points of the frame, world frame

@@ -7,7 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "odometry/parallel_filter.hpp"
+#include "odometry/shard_groups.hpp"
 
 namespace revisit {
 namespace {

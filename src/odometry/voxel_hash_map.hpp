@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/voxel.hpp"
-#include "odometry/parallel_filter.hpp"
+#include "odometry/shard_groups.hpp"
 
 namespace revisit {
 

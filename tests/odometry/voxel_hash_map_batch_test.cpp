@@ -1,5 +1,5 @@
-// The odometry's parallel steps (issue 19) give exactly the serial results at any thread count:
-// range crop, voxel downsampling and the map update.
+// The odometry map's parallel batch update (issue 19) gives exactly the serial result at any thread
+// count, and its neighbourhood cache the lookup's answers.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "odometry/parallel_filter.hpp"
+#include "odometry/shard_groups.hpp"
 #include "odometry/preprocess.hpp"
 #include "odometry/voxel_hash_map.hpp"
 
@@ -34,44 +34,6 @@ auto WithThreads(int threads, F&& f) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     return f();
 }
-
-/// The points of `cloud` in sweep order (by azimuth), as a spinning sensor delivers them: consecutive
-/// points then often share a voxel, which the downsampling's shortcut relies on.
-std::vector<Eigen::Vector3f> InSweepOrder(std::vector<Eigen::Vector3f> cloud) {
-    std::stable_sort(cloud.begin(), cloud.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
-        return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x());
-    });
-    return cloud;
-}
-
-class ParallelFilterOrder : public ::testing::TestWithParam<bool> {};
-
-TEST_P(ParallelFilterOrder, CropAndDownsampleEqualTheSerialDefinitionsAtAnyThreadCount) {
-    const auto scan = GetParam() ? InSweepOrder(ScanLike(3)) : ScanLike(3);
-    std::vector<std::size_t> serial_kept;
-    const auto serial_cropped = CropRange(scan, 5.0, 100.0, &serial_kept);
-    const auto serial_fine = VoxelDownsample(serial_cropped, 0.5);
-    const auto serial_coarse = VoxelDownsample(serial_fine, 1.5);
-    ASSERT_GT(serial_fine.size(), 20000u);  // enough points for several shards
-    for (const int threads : {1, 2, 4}) {
-        WithThreads(threads, [&] {
-            ParallelFilter filter;
-            std::vector<Eigen::Vector3d> cropped, fine, coarse;
-            std::vector<std::size_t> kept;
-            for (int frame = 0; frame < 2; ++frame) {  // the second frame reuses the buffers
-                filter.Crop(scan, 5.0, 100.0, cropped, &kept);
-                filter.Downsample(cropped, 0.5, fine);
-                filter.Downsample(fine, 1.5, coarse);
-                EXPECT_EQ(cropped, serial_cropped) << threads << " threads";
-                EXPECT_EQ(kept, serial_kept) << threads << " threads";
-                EXPECT_EQ(fine, serial_fine) << threads << " threads";
-                EXPECT_EQ(coarse, serial_coarse) << threads << " threads";
-            }
-            return 0;
-        });
-    }
-}
-INSTANTIATE_TEST_SUITE_P(RandomAndSweepOrder, ParallelFilterOrder, ::testing::Bool());
 
 TEST(VoxelHashMap, AddingABatchEqualsAddingPointByPointAtAnyThreadCount) {
     const auto scan = ScanLike(5);
