@@ -178,7 +178,7 @@ double ClosurePipeline::FootprintCell() const {
 
 void ClosurePipeline::CheckAgainstOdometryOverlays() {
     const int below = config_.proximity.odometry_check_below;
-    if (!config_.proximity.enabled || below <= 0 || !config_.consistency.enabled) return;
+    if (!config_.proximity.enabled || config_.proximity.rounds <= 0 || below <= 0 || !config_.consistency.enabled) return;
     std::size_t consistent = 0;
     for (const auto& record : closures_) consistent += record.accepted;
     // None: the pass below starts from the odometry anyway.

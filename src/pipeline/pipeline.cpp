@@ -212,7 +212,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     const auto next_scan = [&](tbb::flow_control& flow) -> PosedScan {
         PosedScan posed;
         std::optional<Scan> scan;
-        while ((scan = reader->Next()) && scan->index < options.from) {}
+        while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {}
         time("read", read_start);
         if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {
             flow.stop();
