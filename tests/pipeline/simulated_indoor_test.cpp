@@ -1,6 +1,6 @@
 /// Issue 16 on the simulated 2D laser office (`indoor-2d-180`: rooms along corridors, a 180-degree laser,
 /// a drifting wheel-odometry prior): with the defaults, a place matched onto its twin must not survive.
-/// Two mechanisms, each tested with the other one's scenario: the drift calibration (a room matched one
+/// Two mechanisms, each tested in the scenario that needs it: the drift calibration (a room matched one
 /// room along, 9 m off with its heading right, which the 2D prior heading rate lets agree with the true
 /// closures) and the odometry's own overlays (a twin accepted while too few closures can check it).
 #include <gtest/gtest.h>
@@ -70,7 +70,8 @@ TEST(SimulatedIndoor, TheDriftTheClosuresShowDropsTheRoomOneAlong) {
 }
 
 /// With the prior's bias removed the odometry gets better and the detector's closures come out
-/// differently: 2 verified, of which one lays a room onto a twin (6.96 m APE after, 5 true / 1 false).
+/// differently: 2 accepted by the detector, one of them a room laid onto a twin (5 true / 1 false, APE
+/// after 6.96 m).
 /// Two closures are too few to check each other; the maps the odometry lays over each other register
 /// there, and those closures outvote the twin.
 TEST(SimulatedIndoor, TheOdometrysOwnOverlaysOutvoteALoneTwin) {
