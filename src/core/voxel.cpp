@@ -14,7 +14,7 @@ std::vector<Eigen::Vector3d> VoxelDownsample(const std::vector<Eigen::Vector3d>&
     std::vector<Eigen::Vector3d> kept;
     kept.reserve(points.size() / 2);
     for (const auto& point : points) {
-        const Voxel voxel = FloorVoxel(Eigen::Vector3d(point * inv_voxel_size));
+        const Voxel voxel = VoxelOfInverse(point, inv_voxel_size);
         if (seen.insert(voxel).second) kept.push_back(point);
     }
     return kept;

@@ -14,12 +14,6 @@
 
 namespace revisit {
 
-/// Integer voxel coordinates of a point for a given inverse voxel size [1/m] (a multiplication
-/// instead of core's division: this runs for every neighbour query of the ICP).
-inline Voxel VoxelOfInverse(const Eigen::Vector3d& point, double inv_voxel_size) {
-    return FloorVoxel(Eigen::Vector3d(point * inv_voxel_size));
-}
-
 class VoxelHashMap {
   public:
     /// `voxel_size` [m]; a voxel holds at most `max_points_per_voxel` points, at least
