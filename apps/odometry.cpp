@@ -8,8 +8,8 @@
 #include "io/trajectory_io.hpp"
 #include "odometry/lidar_odometry.hpp"
 #include "pipeline/interrupt.hpp"
+#include "pipeline/odometry_stages.hpp"
 #include "pipeline/progress.hpp"
-#include "pipeline/scene_scale_watch.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {
@@ -27,22 +27,22 @@ int RunOdometry(const OdometryOptions& o) {
     const ReaderOptions reader_options = MakeReaderOptions(config.input);
     auto reader = OpenDataset(o.dataset, reader_options);
     PrepareOutputFolder(o.out, o.force);
-    LidarOdometry odometry(config.odometry);
-    SceneScaleWatch scene_scale(config);
+    OdometryStages stages(config);
+    const LidarOdometry& odometry = stages.odometry();
     Trajectory trajectory;
     Progress progress(std::cerr, Progress::DetectMode(o.quiet), reader->Info().num_scans);
     InstallInterruptHandler();
     const auto start = std::chrono::steady_clock::now();
-    while (auto scan = reader->Next()) {
-        if (InterruptRequested()) break;
-        trajectory.poses.push_back(odometry.RegisterScan(*scan));
-        if (auto update = scene_scale.Follow(trajectory.size() - 1, *scan, odometry)) progress.Message(DescribeUpdate(*update));
+    const auto next = [&]() -> std::optional<Scan> { return InterruptRequested() ? std::nullopt : reader->Next(); };
+    RunOdometryStages(stages, next, [&](OdometryStages::Item& item, const Eigen::Isometry3d& T_world_sensor) {
+        trajectory.poses.push_back(T_world_sensor);
+        if (item.update) progress.Message(DescribeUpdate(*item.update));
         if (!odometry.LastStats().warning.empty() && odometry.NumDegenerateFrames() <= kShownWarnings) {
             progress.Message("warning: " + odometry.LastStats().warning);
         }
-        trajectory.timestamps.push_back(scan->timestamp);
+        trajectory.timestamps.push_back(item.scan.timestamp);
         progress.Update(trajectory.size());
-    }
+    });
     progress.Finish(trajectory.size());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::filesystem::path out(o.out);

@@ -7,6 +7,7 @@
 #include "io/reader.hpp"
 #include "io/writer.hpp"
 #include "odometry/lidar_odometry.hpp"
+#include "pipeline/odometry_stages.hpp"
 
 namespace revisit {
 
@@ -51,6 +52,9 @@ void MeasureOdometry(const CaseContext& c, const std::string& label, std::vector
                      const OdometryConfig& config, const std::string& note) {
     if (scans.size() < 2) return c.Skip("odometry/" + label + ": fewer than 2 scans");
     for (auto& scan : scans) scan.T_odom_sensor.reset();
+    PipelineConfig settings;
+    settings.odometry = config;
+    settings.input.follow_scene_scale = false;  // the crop stays the given one
     for (const int threads : {1, 2}) {
         const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
         std::size_t points = 0;
@@ -58,8 +62,20 @@ void MeasureOdometry(const CaseContext& c, const std::string& label, std::vector
         {
             Measurement measured = Measure("odometry/" + label + " " + std::to_string(threads) + "t", "ms/scan",
                                            FigureKind::kMsPerItem, c.scale.repeat, [&] {
-                                               LidarOdometry odometry(config);
-                                               for (const auto& scan : scans) odometry.RegisterScan(scan);
+                                               // As `revisit odometry` and `revisit run` register: the
+                                               // preparation of later scans runs ahead. The scans are
+                                               // moved through the stages and back, not copied.
+                                               OdometryStages stages(settings);
+                                               std::size_t next = 0;
+                                               RunOdometryStages(
+                                                   stages,
+                                                   [&]() -> std::optional<Scan> {
+                                                       if (next == scans.size()) return std::nullopt;
+                                                       return std::move(scans[next++]);
+                                                   },
+                                                   [&](OdometryStages::Item& item, const Eigen::Isometry3d&) {
+                                                       scans[item.position] = std::move(item.scan);
+                                                   });
                                                return double(scans.size());
                                            });
             c.Add(std::move(measured), note + ", " + std::to_string(scans.size()) + " scans, " +

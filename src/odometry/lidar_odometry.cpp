@@ -64,10 +64,7 @@ LidarOdometry::LidarOdometry(const OdometryConfig& config)
 }
 
 void LidarOdometry::SetMaxRange(double max_range) {
-    OdometryConfig changed = config_;
-    if (changed.voxel_size == 0.0) changed.voxel_size = config_.VoxelSize();  // the map's voxels stay
-    changed.max_range = max_range;
-    config_ = Validated(changed);
+    config_ = Validated(WithMaxRange(config_, max_range));
     threshold_.SetMaxRange(max_range);
 }
 
@@ -139,7 +136,11 @@ const VoxelHashMap& LidarOdometry::LocalMap() {
     return map_;
 }
 
-Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
+Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) { return RegisterPrepared(scan, PrepareScan(scan, config_)); }
+
+Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan prepared) {
+    // Prepared ahead with other settings (a caller that changed the range since): prepared again.
+    if (!prepared.PreparedFor(config_)) prepared = PrepareScan(scan, config_);
     stats_ = OdometryFrameStats{};
     stats_.input_points = scan.points.size();
     const Eigen::Isometry3d last_pose = poses_.empty() ? Eigen::Isometry3d::Identity() : poses_.back();
@@ -147,28 +148,27 @@ Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) {
     Eigen::Isometry3d T_predicted = Orthonormalized(last_pose * delta);
     if (config_.planar) T_predicted = ProjectToPlanar(T_predicted);
 
-    // Preprocessing, METHOD.md section 1: crop, deskew, downsample at 0.5 v and 1.5 v, serially, while
-    // the previous frame's map update runs alongside (they share no data; both are done before ICP
-    // reads the map). Data-parallel versions of the crop and the downsampling (flags, compaction, a
-    // merge of per-chunk voxel sets) cost twice the serial work, and here the second thread is busy
-    // with the map update anyway: with them the odometry took 3.05-3.29 ms per KITTI scan at 2 threads,
-    // with the serial ones 2.39-2.62 (`revisit bench --only odometry`, README "Seventh round").
-    const auto preprocess = [&] {
-        std::vector<std::size_t>& kept = kept_;
-        deskewed_ = CropRange(scan.points, config_.min_range, config_.max_range, config_.deskew ? &kept : nullptr);
-        if (config_.deskew && !poses_.empty()) {
-            const std::vector<double> all_times = SweepTimes(scan, config_.azimuth_clockwise);
-            std::vector<double> times(kept.size());
-            for (std::size_t i = 0; i < kept.size(); ++i) times[i] = all_times[kept[i]];
-            deskewed_ = Deskew(deskewed_, times, delta);
-        }
-        downsampled_ = VoxelDownsample(deskewed_, 0.5 * config_.VoxelSize());
-        source_ = VoxelDownsample(downsampled_, 1.5 * config_.VoxelSize());
-    };
-    if (map_update_pending_)
-        tbb::parallel_invoke([&] { ApplyMapUpdate(); }, preprocess);
-    else
-        preprocess();
+    // Preprocessing, METHOD.md section 1: crop, deskew, downsample at 0.5 v and 1.5 v. PrepareScan did
+    // what does not depend on the motion; with deskewing, the deskew and both downsamplings run here,
+    // serially, while the previous frame's map update runs alongside (they share no data; both are done
+    // before ICP reads the map). Data-parallel versions of the crop and the downsampling (flags,
+    // compaction, a merge of per-chunk voxel sets) cost twice the serial work (README "Seventh round").
+    deskewed_ = std::move(prepared.cropped);
+    if (config_.deskew) {
+        const auto preprocess = [&] {
+            if (!poses_.empty()) deskewed_ = Deskew(deskewed_, prepared.sweep_times, delta);
+            downsampled_ = VoxelDownsample(deskewed_, 0.5 * config_.VoxelSize());
+            source_ = VoxelDownsample(downsampled_, 1.5 * config_.VoxelSize());
+        };
+        if (map_update_pending_)
+            tbb::parallel_invoke([&] { ApplyMapUpdate(); }, preprocess);
+        else
+            preprocess();
+    } else {
+        downsampled_ = std::move(prepared.downsampled);
+        source_ = std::move(prepared.source);
+        ApplyMapUpdate();
+    }
     stats_.cropped_points = deskewed_.size();
     const double voxel = config_.VoxelSize();
     const std::vector<Eigen::Vector3d>& source = source_;

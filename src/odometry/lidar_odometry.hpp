@@ -11,6 +11,7 @@
 #include "core/trajectory.hpp"
 #include "odometry/adaptive_threshold.hpp"
 #include "odometry/odometry_config.hpp"
+#include "odometry/preprocess.hpp"
 #include "odometry/prior_bias.hpp"
 #include "odometry/voxel_hash_map.hpp"
 
@@ -44,6 +45,10 @@ class LidarOdometry {
     /// pose: a degenerate frame (empty, all out of range, a single plane, too few
     /// correspondences) gets the motion prediction and a warning in LastStats().
     Eigen::Isometry3d RegisterScan(const Scan& scan);
+    /// RegisterScan with the scan's preparation done beforehand (PrepareScan, possibly on another thread
+    /// while the scan before registered): the same pose. Prepared with settings other than the current
+    /// ones (SetMaxRange since), the scan is prepared again here.
+    Eigen::Isometry3d RegisterPrepared(const Scan& scan, PreparedScan prepared);
 
     const Poses& poses() const { return poses_; }
     /// The last scan's cropped (and, if enabled, deskewed) points, full resolution, sensor frame.
@@ -88,7 +93,6 @@ class LidarOdometry {
     std::vector<Eigen::Vector3d> deskewed_;
     std::vector<Eigen::Vector3d> downsampled_;
     // Per-frame buffers kept between frames (issue 19: no allocation per scan).
-    std::vector<std::size_t> kept_;                 ///< input index of each cropped point (deskew)
     std::vector<Eigen::Vector3d> source_;           ///< registration points (1.5 v)
     std::vector<Eigen::Vector3d> points_in_world_;  ///< map points of the frame, world frame
     bool map_update_pending_ = false;               ///< points_in_world_ not yet in the map

@@ -68,4 +68,12 @@ struct OdometryConfig {
     double VoxelSize() const { return voxel_size > 0.0 ? voxel_size : max_range / 100.0; }
 };
 
+/// `config` with the range crop `max_range` [m] and the same map voxels (a voxel size of 0 would
+/// otherwise follow the range).
+inline OdometryConfig WithMaxRange(OdometryConfig config, double max_range) {
+    if (config.voxel_size == 0.0) config.voxel_size = config.VoxelSize();
+    config.max_range = max_range;
+    return config;
+}
+
 }  // namespace revisit

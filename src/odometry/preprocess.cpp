@@ -74,4 +74,30 @@ std::vector<Eigen::Vector3d> Deskew(const std::vector<Eigen::Vector3d>& points, 
     return deskewed;
 }
 
+bool PreparedScan::PreparedFor(const OdometryConfig& config) const {
+    return min_range == config.min_range && max_range == config.max_range && voxel_size == config.VoxelSize() &&
+           deskew == config.deskew;
+}
+
+PreparedScan PrepareScan(const Scan& scan, const OdometryConfig& config) {
+    PreparedScan prepared;
+    prepared.min_range = config.min_range;
+    prepared.max_range = config.max_range;
+    prepared.voxel_size = config.VoxelSize();
+    prepared.deskew = config.deskew;
+    if (config.deskew) {
+        // Deskewing needs the motion predicted from the scan before: the downsampling waits for it.
+        std::vector<std::size_t> kept;
+        prepared.cropped = CropRange(scan.points, config.min_range, config.max_range, &kept);
+        const std::vector<double> all_times = SweepTimes(scan, config.azimuth_clockwise);
+        prepared.sweep_times.resize(kept.size());
+        for (std::size_t i = 0; i < kept.size(); ++i) prepared.sweep_times[i] = all_times[kept[i]];
+        return prepared;
+    }
+    prepared.cropped = CropRange(scan.points, config.min_range, config.max_range);
+    prepared.downsampled = VoxelDownsample(prepared.cropped, 0.5 * prepared.voxel_size);
+    prepared.source = VoxelDownsample(prepared.downsampled, 1.5 * prepared.voxel_size);
+    return prepared;
+}
+
 }  // namespace revisit

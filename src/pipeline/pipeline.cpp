@@ -25,13 +25,16 @@
 #include "pipeline/online.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run_files.hpp"
-#include "pipeline/scene_scale_watch.hpp"
+#include "pipeline/odometry_stages.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kShownFallbacks = 10;  ///< odometry fallbacks shown one by one; all are in run.json
-/// Scans between the odometry and the closure pipeline: the odometry runs ahead while a map closes.
+/// Scans between reading and the closure pipeline: the odometry runs ahead while a map closes and
+/// prepares scans ahead of their registration. Fewer than the odometry alone takes
+/// (kOdometryScansInFlight): here the closure pipeline keeps the second core busy, and each scan in
+/// flight holds its points twice (the demo: 6 scans, peak memory 246-249 MiB; 4 scans, XXX).
 constexpr std::size_t kScansInFlight = 4;
 
 std::size_t PeakRssKb() {
@@ -180,9 +183,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     pipeline.on_map_closed = [&run](const LocalMap& map, const MapRecord& record) {
         if (!record.image_png.empty()) WriteBytes(run.map_density(map.id), record.image_png);
     };
-    std::optional<LidarOdometry> odometry;
-    if (options.poses == PoseSource::kOdometry) odometry.emplace(config.odometry);
-    SceneScaleWatch scene_scale(config);
+    std::optional<OdometryStages> odometry;
+    if (options.poses == PoseSource::kOdometry) odometry.emplace(config);
 
     RunState state;
     state.dataset = fs::absolute(options.dataset).string();
@@ -197,61 +199,76 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     InstallInterruptHandler();
     bool reference_complete = true;
     std::map<std::string, StageTimer> timings;
-    const auto time = [&timings](const char* stage, Clock::time_point start) {
-        auto& t = timings[stage];
-        t.total_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        t.count++;
+    const auto time = [](StageTimer& timer, Clock::time_point start) {
+        timer.total_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        timer.count++;
     };
-    // Two stages in order (issue 19): the odometry of a scan runs while the closure pipeline takes the
-    // scans before it, on the same TBB threads (`--threads`). The odometry never reads what the closure
-    // pipeline does, and each stage sees the scans in input order: the results are those of a loop.
-    // Each stage's own parallel loops are isolated, so a thread waiting inside one never picks up the
-    // other stage's work (a map's detection and verification take ~100 ms).
+    // Four stages (issue 19), on the same TBB threads (`--threads`): reading, in order; the odometry's
+    // preparation of each scan (odometry_stages.hpp), several scans at once; its registration, in order;
+    // the closure pipeline, in order. The odometry runs ahead while a map closes and never reads what
+    // the closure pipeline does: the results are those of a loop. Each stage's parallel loops are
+    // isolated, so a thread waiting inside one never picks up another stage's work (a map's detection
+    // and verification take ~100 ms). Each timer is touched by one serial stage only.
+    using Item = OdometryStages::Item;
     std::size_t accepted = 0;
+    StageTimer read_timer, odometry_timer;
     auto read_start = Clock::now();
-    const auto next_scan = [&](tbb::flow_control& flow) -> PosedScan {
-        PosedScan posed;
+    const auto read = [&](tbb::flow_control& flow) -> Item {
+        Item item;
         std::optional<Scan> scan;
         while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {}
-        time("read", read_start);
+        time(read_timer, read_start);
         if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {
             flow.stop();
-            return posed;
+            return item;
         }
+        item.scan = std::move(*scan);
+        if (odometry) odometry->Admit(item);
+        read_start = Clock::now();
+        return item;
+    };
+    const auto prepare = [&](Item item) {
+        if (odometry) OdometryStages::Prepare(item);
+        return item;
+    };
+    const auto pose = [&](Item item) -> PosedScan {
+        PosedScan posed;
+        Scan& scan = item.scan;
         posed.position = state.odometry.size();
-        const auto odometry_start = Clock::now();
         if (odometry) {
-            tbb::this_task_arena::isolate([&] { posed.T_world_sensor = odometry->RegisterScan(*scan); });
-            posed.points = ToFloat(odometry->LastDeskewedPoints());
-            if (odometry->LastStats().degenerate) {
+            const auto odometry_start = Clock::now();
+            posed.T_world_sensor = odometry->Register(item);
+            const LidarOdometry& registered = odometry->odometry();
+            posed.points = ToFloat(registered.LastDeskewedPoints());
+            if (registered.LastStats().degenerate) {
                 state.odometry_fallbacks.push_back(posed.position);
-                if (state.odometry_fallbacks.size() <= kShownFallbacks) posed.messages.push_back("warning: " + odometry->LastStats().warning);
+                if (state.odometry_fallbacks.size() <= kShownFallbacks) posed.messages.push_back("warning: " + registered.LastStats().warning);
             }
-            if (auto update = scene_scale.Follow(posed.position, *scan, *odometry)) {
-                posed.messages.push_back(DescribeUpdate(*update));
-                state.setting_updates.push_back(std::move(*update));
+            if (item.update) {
+                posed.messages.push_back(DescribeUpdate(*item.update));
+                state.setting_updates.push_back(std::move(*item.update));
             }
-            time("odometry", odometry_start);
+            time(odometry_timer, odometry_start);
+            odometry_timer.total_ms += item.prepare_ms;  // the part done ahead
         } else if (options.poses == PoseSource::kDataset) {
-            if (!scan->T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan->index) +
-                                                                               " has no reference pose; use --poses odometry");
-            posed.T_world_sensor = *scan->T_world_sensor;
-            posed.points = std::move(scan->points);
+            if (!scan.T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan.index) +
+                                                                              " has no reference pose; use --poses odometry");
+            posed.T_world_sensor = *scan.T_world_sensor;
+            posed.points = std::move(scan.points);
         } else {
-            if (scan->index >= pose_file.size()) {
+            if (scan.index >= pose_file.size()) {
                 throw DatasetError(options.poses_file, "has " + std::to_string(pose_file.size()) + " poses; scan " +
-                                                           std::to_string(scan->index) + " has none");
+                                                           std::to_string(scan.index) + " has none");
             }
-            posed.T_world_sensor = pose_file.poses[scan->index];
-            posed.points = std::move(scan->points);
+            posed.T_world_sensor = pose_file.poses[scan.index];
+            posed.points = std::move(scan.points);
         }
-        state.timestamps.push_back(scan->timestamp);
+        state.timestamps.push_back(scan.timestamp);
         state.odometry.push_back(posed.T_world_sensor);
-        const auto reference = ground_truth.active() ? std::optional(ground_truth.At(scan->index, scan->timestamp))
-                                                     : scan->T_world_sensor;
+        const auto reference = ground_truth.active() ? std::optional(ground_truth.At(scan.index, scan.timestamp))
+                                                     : scan.T_world_sensor;
         if (reference && reference_complete) state.reference.push_back(*reference);
         else reference_complete = false;
-        read_start = Clock::now();
         return posed;
     };
     const auto close_maps = [&](PosedScan posed) {
@@ -261,8 +278,12 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         });
         progress.Update(posed.position + 1, "maps " + std::to_string(pipeline.maps().size()) + "  closures " + std::to_string(accepted));
     };
-    tbb::parallel_pipeline(kScansInFlight, tbb::make_filter<void, PosedScan>(tbb::filter_mode::serial_in_order, next_scan) &
+    tbb::parallel_pipeline(kScansInFlight, tbb::make_filter<void, Item>(tbb::filter_mode::serial_in_order, read) &
+                                               tbb::make_filter<Item, Item>(tbb::filter_mode::parallel, prepare) &
+                                               tbb::make_filter<Item, PosedScan>(tbb::filter_mode::serial_in_order, pose) &
                                                tbb::make_filter<PosedScan, void>(tbb::filter_mode::serial_in_order, close_maps));
+    timings["read"] = read_timer;
+    if (odometry_timer.count > 0) timings["odometry"] = odometry_timer;
     state.complete = !InterruptRequested();
     state.truncated = reader->Info().truncated;
     if (state.odometry.empty() && state.complete) {
@@ -290,8 +311,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     ReleaseFreeMemory();  // the global map is the chain's peak of memory: build it on a trimmed heap
     SaveDatabase(pipeline.detector(), run.database());
     WriteGlobalMap(run, state, config.output.global_map_voxel);
-    time("write", start);
-    state.timings["write"] = timings["write"];
+    time(state.timings["write"], start);
     state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
     state.peak_rss_kb = PeakRssKb();
     WriteRunState(run, state);

@@ -45,12 +45,6 @@ std::optional<SettingUpdate> SceneScaleWatch::Add(std::size_t position, const Sc
     return update;
 }
 
-std::optional<SettingUpdate> SceneScaleWatch::Follow(std::size_t position, const Scan& scan, LidarOdometry& odometry) {
-    auto update = Add(position, scan);
-    if (update) odometry.SetMaxRange(update->to);
-    return update;
-}
-
 std::string DescribeUpdate(const SettingUpdate& update) {
     std::ostringstream out;
     out << "scan " << update.scan << ": " << update.key << " " << update.from << " -> " << update.to << " (" << update.reason << ")";

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "core/scan.hpp"
-#include "odometry/lidar_odometry.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run_state.hpp"
 
@@ -40,8 +39,6 @@ class SceneScaleWatch {
     /// Looks at the raw (uncropped) scan at `position`; returns the change to apply from the next
     /// scan on, if the scene's scale calls for one. Deterministic; a few microseconds per scan.
     std::optional<SettingUpdate> Add(std::size_t position, const Scan& scan);
-    /// Add, and the change applied to `odometry` (what `revisit run` and `revisit odometry` do).
-    std::optional<SettingUpdate> Follow(std::size_t position, const Scan& scan, LidarOdometry& odometry);
 
   private:
     bool active_ = false;

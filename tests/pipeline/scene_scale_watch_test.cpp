@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tbb/global_control.h>
 
 #include "core/error.hpp"
 #include "io/reader.hpp"
 #include "odometry/lidar_odometry.hpp"
 #include "pipeline/auto_settings.hpp"
+#include "pipeline/odometry_stages.hpp"
 #include "pipeline/scene_scale_watch.hpp"
 #include "support/test_data.hpp"
 
@@ -119,16 +121,50 @@ TEST(SceneScaleWatch, RealWalkAndDriveKeepTheirStartingRange) {
     }
 }
 
-TEST(SceneScaleWatch, FollowAppliesTheChangeToTheOdometry) {
-    SceneScaleWatch watch(AutoConfig(30.0));
+TEST(SceneScaleWatch, TheOdometryStagesMakeTheChangeAfterTheScanThatAskedForIt) {
+    // Scans 0-59 in the courtyard, then the square: the window ending at scan 99 widens the crop.
+    std::vector<Scan> scans;
+    for (std::size_t i = 0; i < 120; ++i) scans.push_back(Courtyard(i < 60 ? 12.0 : 60.0, i));
+    PipelineConfig config = AutoConfig(30.0);
+    config.odometry.min_range = 0.5;  // every point of the ground too
+    OdometryStages stages(config);
+    std::vector<std::size_t> cropped;
+    std::vector<std::size_t> updated_after;
+    std::size_t next = 0;
+    {
+        const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+        RunOdometryStages(stages, [&]() -> std::optional<Scan> { return next < scans.size() ? std::optional(scans[next++]) : std::nullopt; },
+                          [&](OdometryStages::Item& item, const Eigen::Isometry3d&) {
+                              cropped.push_back(stages.odometry().LastStats().cropped_points);
+                              if (item.update) updated_after.push_back(item.position);
+                          });
+    }
+    ASSERT_EQ(updated_after, std::vector<std::size_t>{99});
+    EXPECT_DOUBLE_EQ(stages.odometry().config().max_range, 100.0);
+    ASSERT_EQ(cropped.size(), 120u);
+    EXPECT_LT(cropped[99], 11520u - 3000u);  // the wall at 60 m was cropped up to the change ...
+    EXPECT_EQ(cropped[100], 11520u);         // ... and is registered from the next scan on
+}
+
+TEST(LidarOdometry, AScanPreparedBeforeTheRangeChangedIsPreparedAgain) {
     OdometryConfig config;
     config.max_range = 30.0;
+    config.min_range = 0.5;
     config.voxel_size = 1.0;
-    LidarOdometry odometry(config);
-    std::optional<SettingUpdate> update;
-    for (std::size_t i = 0; i < 50 && !update; ++i) update = watch.Follow(i, Courtyard(60.0, i), odometry);
-    ASSERT_TRUE(update);
-    EXPECT_DOUBLE_EQ(odometry.config().max_range, update->to);
+    LidarOdometry loop(config), ahead(config);
+    const Scan first = Courtyard(50.0, 0), second = Courtyard(50.0, 1);
+    PreparedScan first_prepared = PrepareScan(first, config), second_prepared = PrepareScan(second, config);
+    loop.RegisterScan(first);
+    ahead.RegisterPrepared(first, std::move(first_prepared));
+    loop.SetMaxRange(80.0);
+    ahead.SetMaxRange(80.0);
+    ASSERT_FALSE(second_prepared.PreparedFor(ahead.config()));
+    const Eigen::Isometry3d T_loop = loop.RegisterScan(second);
+    const Eigen::Isometry3d T_ahead = ahead.RegisterPrepared(second, std::move(second_prepared));
+    EXPECT_EQ(ahead.LastStats().cropped_points, 11520u);
+    EXPECT_EQ(ahead.LastStats().cropped_points, loop.LastStats().cropped_points);
+    EXPECT_EQ(ahead.LastStats().source_points, loop.LastStats().source_points);
+    EXPECT_TRUE(T_ahead.isApprox(T_loop, 0.0)) << T_ahead.matrix() << "\n" << T_loop.matrix();
 }
 
 TEST(LidarOdometry, SetMaxRangeWidensTheCropFromTheNextScan) {
