@@ -211,9 +211,9 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     // and verification take ~100 ms). Each timer is touched by one serial stage only.
     using Item = OdometryStages::Item;
     std::size_t accepted = 0;
-    StageTimer read_timer, odometry_timer;
-    auto read_start = Clock::now();
+    StageTimer read_timer, odometry_timer, prepare_timer;
     const auto read = [&](tbb::flow_control& flow) -> Item {
+        const auto read_start = Clock::now();  // the wait for the read-ahead thread's scan
         Item item;
         std::optional<Scan> scan;
         while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {}
@@ -224,7 +224,6 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         }
         item.scan = std::move(*scan);
         if (odometry) odometry->Admit(item);
-        read_start = Clock::now();
         return item;
     };
     const auto prepare = [&](Item item) {
@@ -249,7 +248,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                 state.setting_updates.push_back(std::move(*item.update));
             }
             time(odometry_timer, odometry_start);
-            odometry_timer.total_ms += item.prepare_ms;  // the part done ahead
+            prepare_timer.total_ms += item.prepare_ms;  // done ahead, alongside the stages
+            prepare_timer.count++;
         } else if (options.poses == PoseSource::kDataset) {
             if (!scan.T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan.index) +
                                                                               " has no reference pose; use --poses odometry");
@@ -283,7 +283,10 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                                                tbb::make_filter<Item, PosedScan>(tbb::filter_mode::serial_in_order, pose) &
                                                tbb::make_filter<PosedScan, void>(tbb::filter_mode::serial_in_order, close_maps));
     timings["read"] = read_timer;
-    if (odometry_timer.count > 0) timings["odometry"] = odometry_timer;
+    if (odometry_timer.count > 0) {
+        timings["odometry"] = odometry_timer;
+        timings["odometry.prepare"] = prepare_timer;
+    }
     state.complete = !InterruptRequested();
     state.truncated = reader->Info().truncated;
     if (state.odometry.empty() && state.complete) {
