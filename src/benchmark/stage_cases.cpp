@@ -63,19 +63,9 @@ void MeasureOdometry(const CaseContext& c, const std::string& label, std::vector
             Measurement measured = Measure("odometry/" + label + " " + std::to_string(threads) + "t", "ms/scan",
                                            FigureKind::kMsPerItem, c.scale.repeat, [&] {
                                                // As `revisit odometry` and `revisit run` register: the
-                                               // preparation of later scans runs ahead. The scans are
-                                               // moved through the stages and back, not copied.
+                                               // preparation of later scans runs ahead.
                                                OdometryStages stages(settings);
-                                               std::size_t next = 0;
-                                               RunOdometryStages(
-                                                   stages,
-                                                   [&]() -> std::optional<Scan> {
-                                                       if (next == scans.size()) return std::nullopt;
-                                                       return std::move(scans[next++]);
-                                                   },
-                                                   [&](OdometryStages::Item& item, const Eigen::Isometry3d&) {
-                                                       scans[item.position] = std::move(item.scan);
-                                                   });
+                                               RunOdometryStages(stages, scans, [](OdometryStages::Item&, const Eigen::Isometry3d&) {});
                                                return double(scans.size());
                                            });
             c.Add(std::move(measured), note + ", " + std::to_string(scans.size()) + " scans, " +

@@ -73,4 +73,19 @@ void RunOdometryStages(OdometryStages& stages, const std::function<std::optional
             }));
 }
 
+void RunOdometryStages(OdometryStages& stages, std::vector<Scan>& scans,
+                       const std::function<void(OdometryStages::Item&, const Eigen::Isometry3d&)>& registered) {
+    std::size_t next = 0;
+    RunOdometryStages(
+        stages,
+        [&]() -> std::optional<Scan> {
+            if (next == scans.size()) return std::nullopt;
+            return std::move(scans[next++]);
+        },
+        [&](OdometryStages::Item& item, const Eigen::Isometry3d& T_world_sensor) {
+            registered(item, T_world_sensor);
+            scans[item.position] = std::move(item.scan);
+        });
+}
+
 }  // namespace revisit

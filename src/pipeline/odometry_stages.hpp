@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "core/scan.hpp"
 #include "odometry/lidar_odometry.hpp"
@@ -63,6 +64,10 @@ class OdometryStages {
 /// below kStagedMinPoints), with `registered` called in input order with each item and its pose
 /// (before the next registration).
 void RunOdometryStages(OdometryStages& stages, const std::function<std::optional<Scan>()>& next,
+                       const std::function<void(OdometryStages::Item&, const Eigen::Isometry3d&)>& registered);
+/// The same over scans in memory (benchmarks, tests): each is moved through the stages and back into
+/// `scans`, not copied.
+void RunOdometryStages(OdometryStages& stages, std::vector<Scan>& scans,
                        const std::function<void(OdometryStages::Item&, const Eigen::Isometry3d&)>& registered);
 
 }  // namespace revisit

@@ -23,13 +23,10 @@ Poses InStages(const PipelineConfig& config, std::vector<Scan> scans, std::size_
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     OdometryStages stages(config);
     Poses poses;
-    std::size_t next = 0;
-    RunOdometryStages(
-        stages, [&]() -> std::optional<Scan> { return next < scans.size() ? std::optional(std::move(scans[next++])) : std::nullopt; },
-        [&](OdometryStages::Item& item, const Eigen::Isometry3d& T_world_sensor) {
-            EXPECT_EQ(item.position, poses.size());
-            poses.push_back(T_world_sensor);
-        });
+    RunOdometryStages(stages, scans, [&](OdometryStages::Item& item, const Eigen::Isometry3d& T_world_sensor) {
+        EXPECT_EQ(item.position, poses.size());
+        poses.push_back(T_world_sensor);
+    });
     return poses;
 }
 

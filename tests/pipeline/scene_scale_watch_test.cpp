@@ -130,14 +130,12 @@ TEST(SceneScaleWatch, TheOdometryStagesMakeTheChangeAfterTheScanThatAskedForIt) 
     OdometryStages stages(config);
     std::vector<std::size_t> cropped;
     std::vector<std::size_t> updated_after;
-    std::size_t next = 0;
     {
         const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
-        RunOdometryStages(stages, [&]() -> std::optional<Scan> { return next < scans.size() ? std::optional(scans[next++]) : std::nullopt; },
-                          [&](OdometryStages::Item& item, const Eigen::Isometry3d&) {
-                              cropped.push_back(stages.odometry().LastStats().cropped_points);
-                              if (item.update) updated_after.push_back(item.position);
-                          });
+        RunOdometryStages(stages, scans, [&](OdometryStages::Item& item, const Eigen::Isometry3d&) {
+            cropped.push_back(stages.odometry().LastStats().cropped_points);
+            if (item.update) updated_after.push_back(item.position);
+        });
     }
     ASSERT_EQ(updated_after, std::vector<std::size_t>{99});
     EXPECT_DOUBLE_EQ(stages.odometry().config().max_range, 100.0);
