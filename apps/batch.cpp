@@ -8,8 +8,8 @@
 #include "commands.hpp"
 #include "core/error.hpp"
 #include "io/output_folder.hpp"
-#include "pipeline/batch_local.hpp"
-#include "pipeline/batch_slurm.hpp"
+#include "fleet/batch_local.hpp"
+#include "fleet/batch_slurm.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <iostream>
 
-#include "benchmark/record.hpp"
-#include "benchmark/suite.hpp"
+#include "bench_suite/record.hpp"
+#include "bench_suite/suite.hpp"
 #include "commands.hpp"
 #include "run_options.hpp"
 

@@ -3,7 +3,7 @@
 
 #include "commands.hpp"
 #include "pipeline/evaluate.hpp"
-#include "pipeline/run_files.hpp"
+#include "runfolder/run_files.hpp"
 #include "pipeline/summary.hpp"
 #include "run_options.hpp"
 

@@ -3,7 +3,7 @@
 
 #include "commands.hpp"
 #include "io/dataset_summary.hpp"
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 
 namespace revisit::app {
 namespace {

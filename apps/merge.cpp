@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "pipeline/session_merge.hpp"
+#include "sessions/session_merge.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/run_and_report.hpp"
-#include "pipeline/session_merge.hpp"
+#include "sessions/session_merge.hpp"
 #include "run_options.hpp"
 
 namespace revisit::app {

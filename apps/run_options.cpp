@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 
 namespace revisit::app {
 namespace fs = std::filesystem;

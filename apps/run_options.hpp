@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/config.hpp"
+#include "config/config.hpp"
 
 namespace revisit::app {
 
@@ -26,7 +26,7 @@ void AddConfigOptions(CLI::App& cmd, ConfigOptions& options);
 PipelineConfig ResolveConfig(const ConfigOptions& options);
 
 /// ResolveConfig, then every setting no --config/--set gave derived from the dataset's first scans
-/// (src/pipeline/auto_settings.hpp), printed with the reasons on `log` and kept for config.yaml.
+/// (src/settings/auto_settings.hpp), printed with the reasons on `log` and kept for config.yaml.
 PipelineConfig ResolveConfigFor(const ConfigOptions& options, const std::filesystem::path& dataset, std::ostream& log);
 
 /// Limits TBB (and so Ceres) to `threads` workers for the lifetime of the returned object.

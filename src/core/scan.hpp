@@ -10,7 +10,7 @@
 namespace revisit {
 
 /// A 2D laser's beams as the file states them, kept so the stated geometry can be checked against
-/// the data (src/pipeline/laser_aperture.hpp). Points are built with `aperture`.
+/// the data (src/settings/laser_aperture.hpp). Points are built with `aperture`.
 struct PlanarBeams {
     std::vector<float> ranges;     ///< [m] per beam in order of increasing angle; 0 = no return
     double aperture = 0.0;         ///< [rad] field of view used to place the beams

@@ -10,8 +10,34 @@
 namespace revisit {
 namespace fs = std::filesystem;
 
+namespace {
+
+std::map<std::string, DatasetOpener>& Schemes() {
+    static std::map<std::string, DatasetOpener> schemes;
+    return schemes;
+}
+
+/// The scheme of "NAME:rest" when NAME is registered, else empty.
+std::string SchemeOf(const std::string& spec) {
+    const auto colon = spec.find(':');
+    if (colon == std::string::npos || colon == 0) return {};
+    const std::string scheme = spec.substr(0, colon);
+    return Schemes().count(scheme) > 0 ? scheme : std::string();
+}
+
+}  // namespace
+
+void RegisterDatasetScheme(const std::string& scheme, DatasetOpener opener) { Schemes()[scheme] = std::move(opener); }
+
+bool IsSchemeDataset(const fs::path& path) { return !SchemeOf(path.string()).empty(); }
+
+std::string DatasetName(const fs::path& path) {
+    return IsSchemeDataset(path) ? path.string() : fs::absolute(path).string();
+}
+
 std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& options) {
     if (path.empty()) throw DatasetError(path, "no dataset path given");
+    if (const std::string scheme = SchemeOf(path.string()); !scheme.empty()) return Schemes().at(scheme)(path.string(), options);
     std::error_code ec;
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status)) throw DatasetError(path, "no such file or folder");

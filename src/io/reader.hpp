@@ -2,6 +2,7 @@
 /// Streaming dataset readers: one scan at a time, never the whole sequence in memory.
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -54,7 +55,16 @@ class Reader {
     ReadStats stats_;
 };
 
-/// Picks the reader from the path: a folder with velodyne/ (or sequences/NN + poses/NN.txt),
+/// Datasets named by a scheme instead of a path, e.g. "sim:demo" (the simulator, registered by
+/// sim/sim_reader.hpp). `spec` is the whole name, scheme included.
+using DatasetOpener = std::function<std::unique_ptr<Reader>(const std::string& spec, const ReaderOptions& options)>;
+void RegisterDatasetScheme(const std::string& scheme, DatasetOpener opener);
+/// True when `path` names a registered scheme ("sim:..."): not a file, never made absolute.
+bool IsSchemeDataset(const std::filesystem::path& path);
+/// What a run records as its dataset: the absolute path, or the scheme name unchanged.
+std::string DatasetName(const std::filesystem::path& path);
+
+/// Picks the reader from the path: a registered scheme ("sim:PRESET"), a folder with velodyne/ (or sequences/NN + poses/NN.txt),
 /// a folder of .pcd or .ply files, or a .rawlog / .rawlog.gz file. Throws DatasetError.
 std::unique_ptr<Reader> OpenDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
 

@@ -9,7 +9,7 @@
 #include "evaluation/method_comparison.hpp"
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
-#include "pipeline/config.hpp"
+#include "config/config.hpp"
 #include "pipeline/missed_revisits.hpp"
 #include "pipeline/pipeline.hpp"
 

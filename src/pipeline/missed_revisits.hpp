@@ -7,7 +7,7 @@
 
 #include "evaluation/closure_truth.hpp"
 #include "evaluation/scan_pair.hpp"
-#include "pipeline/run_state.hpp"
+#include "runfolder/run_state.hpp"
 
 namespace revisit {
 

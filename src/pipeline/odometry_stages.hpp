@@ -12,9 +12,9 @@
 #include "core/scan.hpp"
 #include "odometry/lidar_odometry.hpp"
 #include "odometry/preprocess.hpp"
-#include "pipeline/config.hpp"
-#include "pipeline/run_state.hpp"
-#include "pipeline/scene_scale_watch.hpp"
+#include "config/config.hpp"
+#include "runfolder/run_state.hpp"
+#include "settings/scene_scale_watch.hpp"
 
 namespace revisit {
 

@@ -21,18 +21,6 @@ std::string FormatWeight(double weight) {
     return text;
 }
 
-class MemoryMapStore final : public MapPointStore {
-  public:
-    void Put(int map_id, const std::vector<Eigen::Vector3f>& points) override { maps_[map_id] = points; }
-    std::vector<Eigen::Vector3f> Get(int map_id) const override {
-        const auto it = maps_.find(map_id);
-        return it == maps_.end() ? std::vector<Eigen::Vector3f>{} : it->second;
-    }
-
-  private:
-    std::map<int, std::vector<Eigen::Vector3f>> maps_;
-};
-
 /// The detector runs with a gate of 3 inliers so that the evaluation can sweep the acceptance
 /// threshold from 3 (METHOD.md section 7); closures below the configured gamma are recorded but
 /// never refined nor added to the graph.
@@ -61,8 +49,6 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 }  // namespace
-
-std::unique_ptr<MapPointStore> MakeMemoryMapStore() { return std::make_unique<MemoryMapStore>(); }
 
 ClosurePipeline::ClosurePipeline(const PipelineConfig& config, std::unique_ptr<MapPointStore> store)
     : config_(config), store_(store ? std::move(store) : MakeMemoryMapStore()), mapper_(config.local_map),

@@ -10,22 +10,13 @@
 
 #include "closures/detector.hpp"
 #include "closures/local_map.hpp"
+#include "closures/map_point_store.hpp"
 #include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
-#include "pipeline/config.hpp"
-#include "pipeline/run_state.hpp"
+#include "config/config.hpp"
+#include "runfolder/run_state.hpp"
 
 namespace revisit {
-
-/// Where closed maps' points live until a later map closes with them: memory by default, the run
-/// folder for `revisit run` (memory stays bounded by one local map and the database).
-class MapPointStore {
-  public:
-    virtual ~MapPointStore() = default;
-    virtual void Put(int map_id, const std::vector<Eigen::Vector3f>& points_in_map) = 0;
-    virtual std::vector<Eigen::Vector3f> Get(int map_id) const = 0;
-};
-std::unique_ptr<MapPointStore> MakeMemoryMapStore();
 
 /// What one call changed.
 struct PipelineUpdate {

@@ -19,12 +19,12 @@
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
 #include "odometry/lidar_odometry.hpp"
-#include "pipeline/folder_map_store.hpp"
-#include "pipeline/global_map.hpp"
+#include "runfolder/folder_map_store.hpp"
+#include "runfolder/global_map.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/online.hpp"
 #include "pipeline/progress.hpp"
-#include "pipeline/run_files.hpp"
+#include "runfolder/run_files.hpp"
 #include "pipeline/odometry_stages.hpp"
 
 namespace revisit {
@@ -125,7 +125,7 @@ void CheckScanRange(const RunOptions& options, std::optional<std::size_t> num_sc
 }
 
 void WriteRunOptions(const RunFolder& run, const RunOptions& o) {
-    nlohmann::json j = {{"dataset", fs::absolute(o.dataset).string()}, {"poses", PoseSourceName(o.poses)},
+    nlohmann::json j = {{"dataset", DatasetName(o.dataset)}, {"poses", PoseSourceName(o.poses)},
                         {"poses_file", o.poses_file.empty() ? "" : fs::absolute(o.poses_file).string()},
                         {"gt_file", o.gt_file.empty() ? "" : fs::absolute(o.gt_file).string()},
                         {"from", o.from}, {"to", o.to ? nlohmann::json(*o.to) : nlohmann::json(nullptr)},
@@ -187,7 +187,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     if (options.poses == PoseSource::kOdometry) odometry.emplace(config);
 
     RunState state;
-    state.dataset = fs::absolute(options.dataset).string();
+    state.dataset = DatasetName(options.dataset);
     state.format = reader->Info().format;
     state.poses_source = options.poses == PoseSource::kFile ? options.poses_file.string() : PoseSourceName(options.poses);
     std::optional<std::size_t> total;

@@ -5,9 +5,9 @@
 #include <optional>
 #include <ostream>
 
-#include "pipeline/config.hpp"
-#include "pipeline/run_folder.hpp"
-#include "pipeline/run_state.hpp"
+#include "config/config.hpp"
+#include "runfolder/run_folder.hpp"
+#include "runfolder/run_state.hpp"
 
 namespace revisit {
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/config.hpp"
-#include "pipeline/run_folder.hpp"
+#include "config/config.hpp"
+#include "runfolder/run_folder.hpp"
 #include "report/report_input.hpp"
 #include "report/report_writer.hpp"
 

@@ -4,7 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "pipeline/scene_scale_watch.hpp"
+#include "settings/scene_scale_watch.hpp"
 
 namespace revisit {
 

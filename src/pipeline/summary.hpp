@@ -5,7 +5,7 @@
 #include <string>
 
 #include "pipeline/evaluate.hpp"
-#include "pipeline/run_state.hpp"
+#include "runfolder/run_state.hpp"
 
 namespace revisit {
 

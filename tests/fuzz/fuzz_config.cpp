@@ -1,7 +1,7 @@
 /// libFuzzer: YAML configuration files through the schema (every key bound, every value checked).
 #include "core/error.hpp"
 #include "fuzz_support.hpp"
-#include "pipeline/config.hpp"
+#include "config/config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace revisit;

@@ -4,8 +4,8 @@
 
 #include "core/error.hpp"
 #include "fuzz_support.hpp"
-#include "pipeline/run_files.hpp"
-#include "pipeline/run_folder.hpp"
+#include "runfolder/run_files.hpp"
+#include "runfolder/run_folder.hpp"
 
 namespace {
 namespace fs = std::filesystem;

@@ -10,8 +10,8 @@
 #include "io/cloud_files.hpp"
 #include "io/trajectory_io.hpp"
 #include "io/writer.hpp"
-#include "pipeline/config.hpp"
-#include "pipeline/run_files.hpp"
+#include "config/config.hpp"
+#include "runfolder/run_files.hpp"
 
 namespace {
 namespace fs = std::filesystem;

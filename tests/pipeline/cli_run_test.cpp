@@ -8,8 +8,8 @@
 #include <iterator>
 
 #include "cli.hpp"
-#include "pipeline/config.hpp"
-#include "pipeline/run_files.hpp"
+#include "config/config.hpp"
+#include "runfolder/run_files.hpp"
 #include "sim_dataset.hpp"
 
 namespace revisit {

@@ -13,8 +13,8 @@
 #include "cli.hpp"
 #include "io/reader.hpp"
 #include "io/writer.hpp"
-#include "pipeline/csv.hpp"
-#include "pipeline/run_files.hpp"
+#include "runfolder/csv.hpp"
+#include "runfolder/run_files.hpp"
 #include "sim_dataset.hpp"
 #include "small_disk.hpp"
 

@@ -13,7 +13,7 @@
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/report_builder.hpp"
-#include "pipeline/run_files.hpp"
+#include "runfolder/run_files.hpp"
 #include "pipeline_run.hpp"
 #include "sim_dataset.hpp"
 

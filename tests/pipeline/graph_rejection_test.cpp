@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "optimization/pose_graph.hpp"
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 #include "pipeline_run.hpp"
 
 namespace revisit {

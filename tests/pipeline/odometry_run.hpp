@@ -6,7 +6,7 @@
 #include "core/trajectory.hpp"
 #include "io/reader.hpp"
 #include "odometry/lidar_odometry.hpp"
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 
 namespace revisit::test {
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
 #include "test_data.hpp"

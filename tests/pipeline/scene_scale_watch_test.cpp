@@ -8,9 +8,9 @@
 #include "core/error.hpp"
 #include "io/reader.hpp"
 #include "odometry/lidar_odometry.hpp"
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 #include "pipeline/odometry_stages.hpp"
-#include "pipeline/scene_scale_watch.hpp"
+#include "settings/scene_scale_watch.hpp"
 #include "support/test_data.hpp"
 
 namespace revisit {

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <utility>
 
-#include "pipeline/auto_settings.hpp"
+#include "settings/auto_settings.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
 #include "sim/presets.hpp"

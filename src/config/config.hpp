@@ -1,0 +1,128 @@
+#pragma once
+/// Every parameter of a run, grouped by stage, with the one schema that reads and writes them as
+/// YAML (configs/default.yaml documents each with its unit and source).
+#include <set>
+#include <string>
+#include <vector>
+
+#include "closures/detector.hpp"
+#include "closures/local_map.hpp"
+#include "evaluation/closure_truth.hpp"
+#include "evaluation/ground_truth_closures.hpp"
+#include "evaluation/predicted_closures.hpp"
+#include "evaluation/scan_context.hpp"
+#include "io/reader.hpp"
+#include "odometry/odometry_config.hpp"
+#include "optimization/closure_consistency.hpp"
+#include "optimization/pose_graph.hpp"
+#include "optimization/refinement.hpp"
+#include "config/config_schema.hpp"
+
+namespace revisit {
+
+struct InputConfig {
+    /// Derive the settings no file or --set gave from the first scans (src/settings/auto_settings.hpp).
+    bool auto_settings = true;
+    /// With auto_settings and no given odometry.max_range: the crop radius follows the scene's scale as
+    /// the sequence unfolds (src/settings/scene_scale_watch.hpp).
+    bool follow_scene_scale = true;
+    bool kitti_vertical_correction = false;  ///< KITTI HDL-64E: rotate points by 0.205 deg (configs/kitti.yaml)
+    std::string sensor_label;                ///< rawlogs: only this sensor ("" = all)
+    double laser_aperture_deg = 0.0;         ///< [deg] 2D lasers: replaces the file's aperture (0: keep)
+};
+
+struct GraphNoiseConfig {
+    double odometry_translation_per_m = 0.01;  ///< [m/m] odometry edge sigma per metre between map origins (1%)
+    double odometry_rotation_per_m = 3e-4;     ///< [rad/m] (~1.7 deg per 100 m)
+    bool closure_information_from_registration = false;  ///< else a fixed closure sigma below
+    double closure_sigma_translation = 0.03;  ///< [m] ~ 1e3 x identity information (METHOD.md 6)
+    double closure_sigma_rotation = 0.03;     ///< [rad]
+    int optimize_every_closures = 1;          ///< online: re-optimize after this many accepted closures
+    double online_time_budget = 0.2;          ///< [s] per online update (the final batch has none)
+    /// After the final optimization, verified closures whose robust weight fell below this are reported
+    /// as rejected: the graph found them inconsistent with the odometry and the other closures.
+    double min_weight = 0.1;
+};
+
+/// The proximity pass (README, "Closures from the corrected map"): after the final optimization, maps
+/// that the corrected poses lay over each other are registered directly from that estimate, verified
+/// like any closure, and join the graph when they agree with every accepted closure.
+struct ProximityConfig {
+    bool enabled = true;
+    int rounds = 2;             ///< passes, each from the estimate the previous one improved
+    /// Predicted overlap (shared ground cells / cells of the smaller map, cells of 1/20 of a map's
+    /// length) from which a pair is registered.
+    double min_overlap = 0.3;
+    int max_per_map = 3;        ///< registrations per map and round, largest predicted overlap first (cost bound)
+    /// With fewer consistent detector closures than this, the pass first registers the maps the odometry
+    /// itself lays over each other, and those closures may displace the detector's (README: the odometry's
+    /// own overlays); 0: never.
+    int odometry_check_below = 3;
+};
+
+struct OutputConfig {
+    double map_voxel = 0.5;      ///< [m] downsampling of each local map stored in the run folder
+    double global_map_voxel = 0.5;  ///< [m] downsampling of the corrected global map (PLY)
+    bool write_report = true;    ///< render report/index.html at the end
+    /// Report pages for this many of the strongest candidates below the acceptance threshold, besides every
+    /// closure that reached it; the others are rows of the index's table (`revisit inspect` renders them).
+    int report_candidates = 20;
+    bool scan_context = true;    ///< also run the ScanContext baseline when ground truth exists
+    bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
+};
+
+/// Several sessions and many machines (issue 20): `revisit merge`, `run --against`, `revisit batch`.
+struct FleetConfig {
+    /// Two sessions are joined only by at least this many mutually consistent cross-session closures
+    /// (1 trusts a lone verified closure, which nothing else can check).
+    int min_cross_closures = 1;
+    int slurm_cpus_per_task = 2;     ///< `revisit batch --engine slurm`: --cpus-per-task of each run
+    int slurm_memory_mb = 4096;      ///< [MiB] --mem of each run and of the merge
+    int slurm_time_minutes = 120;    ///< [min] --time of each run and of the merge
+    std::string slurm_partition;     ///< --partition ("": the cluster's default)
+};
+
+/// The pose graph's defaults for the pipeline: graduated robustness on, because closures arrive far
+/// from drifted odometry (measured on the simulated demo city: APE 56.8 m -> 49.7 m without, 20.7 m
+/// with, the same 17 correct closures).
+inline PoseGraphConfig PipelineGraphConfig() {
+    PoseGraphConfig config;
+    config.anneal = true;
+    return config;
+}
+
+struct PipelineConfig {
+    InputConfig input;
+    OdometryConfig odometry;
+    LocalMapConfig local_map;
+    ClosureDetectorConfig detector;
+    RefinementConfig refinement;
+    PoseGraphConfig graph = PipelineGraphConfig();
+    GraphNoiseConfig graph_noise;
+    ClosureConsistencyConfig consistency;
+    ProximityConfig proximity;
+    GtClosureConfig ground_truth;
+    ClosureTruthConfig truth;
+    PredictedClosureConfig predicted;
+    ScanContextConfig scan_context;
+    OutputConfig output;
+    FleetConfig fleet;
+    /// Keys a config file or --set gave a value (LoadConfig fills it): automatic settings leave them alone.
+    std::set<std::string> explicit_keys;
+    /// Settings derived from the data and why (src/settings/auto_settings.hpp), for config.yaml and run.json.
+    std::vector<std::string> derived;
+};
+
+/// The schema bound to `config`'s fields (`config` must outlive it).
+ConfigSchema MakeConfigSchema(PipelineConfig& config);
+
+/// Defaults, then each file in order, then `key=value` overrides. Throws ConfigError.
+PipelineConfig LoadConfig(const std::vector<std::string>& files, const std::vector<std::string>& overrides);
+
+/// Reader options from the input section.
+ReaderOptions MakeReaderOptions(const InputConfig& input);
+
+/// The fully resolved configuration as commented YAML (what a run writes to config.yaml).
+std::string DumpConfig(const PipelineConfig& config);
+
+}  // namespace revisit

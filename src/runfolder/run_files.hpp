@@ -1,0 +1,19 @@
+#pragma once
+/// Writing a run's state into its folder and reading it back (CSV and JSON that other tools read).
+#include "runfolder/run_folder.hpp"
+#include "runfolder/run_state.hpp"
+
+namespace revisit {
+
+/// poses_{odometry,corrected}_{kitti,tum}.txt, poses_reference_tum.txt, local_maps.csv,
+/// closures.csv, closures/NNNN.json (matches and keypoints for the report), timings.json, run.json.
+void WriteRunState(const RunFolder& run, const RunState& state);
+
+/// Reads what WriteRunState wrote; throws DatasetError naming the file on anything malformed.
+RunState ReadRunState(const RunFolder& run);
+
+/// The closure's matches and keypoints (the report draws them).
+void WriteClosureDetail(const std::filesystem::path& file, const Closure& closure);
+void ReadClosureDetail(const std::filesystem::path& file, Closure& closure);
+
+}  // namespace revisit

@@ -1,0 +1,65 @@
+#include "runfolder/run_folder.hpp"
+
+#include <cstring>
+#include <ctime>
+#include <iomanip>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/output_folder.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+
+RunFolder RunFolder::Create(const fs::path& root, bool force) {
+    PrepareOutputFolder(root, force);
+    fs::create_directories(root / "maps");
+    return RunFolder(root);
+}
+
+RunFolder RunFolder::Open(const fs::path& root) {
+    RunFolder run(root);
+    if (!fs::is_directory(root)) throw DatasetError(root, "no such run folder");
+    if (!fs::exists(run.run_info())) throw DatasetError(root, "not a revisit run folder (no run.json)");
+    return run;
+}
+
+fs::path RunFolder::DefaultPath(const fs::path& parent, const fs::path& dataset) {
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    std::ostringstream name;
+    fs::path base = dataset.filename().empty() ? dataset.parent_path().filename() : dataset.filename();
+    std::string stem = base.string();
+    for (const char* suffix : {".gz", ".rawlog"}) {
+        if (stem.size() > std::strlen(suffix) && stem.compare(stem.size() - std::strlen(suffix), std::string::npos, suffix) == 0) {
+            stem.resize(stem.size() - std::strlen(suffix));
+        }
+    }
+    for (char& c : stem) {
+        if (c == ' ' || c == '/' || c == ':') c = '_';
+    }
+    name << (stem.empty() ? "run" : stem) << '-' << std::put_time(&local, "%Y%m%d-%H%M%S");
+    return parent / name.str();
+}
+
+void RunFolder::UpdateLatestLink(const fs::path& run) {
+    const fs::path link = run.parent_path() / "latest";
+    std::error_code ec;
+    if (fs::is_symlink(link)) fs::remove(link, ec);
+    if (!fs::exists(link)) fs::create_directory_symlink(run.filename(), link, ec);  // best effort
+}
+
+fs::path RunFolder::map_points(int id) const {
+    std::ostringstream name;
+    name << "map_" << std::setw(4) << std::setfill('0') << id << ".bin";
+    return maps_dir() / name.str();
+}
+
+fs::path RunFolder::map_density(int id) const {
+    std::ostringstream name;
+    name << "map_" << std::setw(4) << std::setfill('0') << id << "_density.png";
+    return maps_dir() / name.str();
+}
+
+}  // namespace revisit
