@@ -1,15 +1,11 @@
-/// `revisit demo`: simulate the default city once (cached), run the whole chain, print the report path.
-#include <cstdlib>
-#include <fstream>
+/// `revisit demo`: the simulator's drive read as a dataset (sim:PRESET), the whole chain, the report.
 #include <iostream>
 
 #include "commands.hpp"
-#include "core/atomic_file.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run_and_report.hpp"
 #include "run_options.hpp"
-#include "sim/presets.hpp"
-#include "sim/simulate.hpp"
+#include "sim/sim_reader.hpp"
 
 namespace revisit::app {
 namespace fs = std::filesystem;
@@ -21,30 +17,13 @@ struct DemoOptions {
     bool quiet = false;
 };
 
-fs::path CacheFolder(const std::string& preset, std::uint64_t seed) {
-    const char* xdg = std::getenv("XDG_CACHE_HOME");
-    const char* home = std::getenv("HOME");
-    const fs::path base = xdg && *xdg ? fs::path(xdg) : home && *home ? fs::path(home) / ".cache" : fs::temp_directory_path();
-    // "v2": the worlds of issue 15 (rough ground, foliage, clutter, sensor residuals); an older cache is not reused.
-    return base / "revisit" / ("sim-v2-" + preset + "-seed" + std::to_string(seed));
-}
-
 int RunDemo(const DemoOptions& o) {
     const auto threads = LimitThreads(o.config.threads);
-    const SimConfig sim = SimPreset(o.preset);
-    const fs::path data = CacheFolder(o.preset, sim.seed);
-    const fs::path done_marker = data / ".complete";
-    if (!fs::exists(done_marker)) {
-        std::cerr << "revisit demo: simulating the '" << o.preset << "' sequence into " << data.string() << " (once)\n";
-        std::optional<Progress> progress;
-        RunSimulation(sim, data, true, [&](std::size_t done, std::size_t total) {
-            if (!progress) progress.emplace(std::cerr, Progress::DetectMode(o.quiet), total);
-            progress->Update(done);
-        });
-        WriteFileAtomically(done_marker, std::string_view("ok\n"));
-    } else {
-        std::cerr << "revisit demo: using the cached sequence " << data.string() << '\n';
-    }
+    // The simulator is read as a dataset: each scan is ray-cast as the chain asks for it, nothing is
+    // cached, and the evaluation reads the same scans again the same way (sim/sim_reader.hpp).
+    const fs::path data = "sim:" + o.preset;
+    SimConfigFromSpec(data.string());  // an unknown preset fails here, before any work
+    std::cerr << "revisit demo: simulating the '" << o.preset << "' drive as it is read (" << data.string() << ")\n";
     const PipelineConfig config = ResolveConfigFor(o.config, data, std::cerr);
     RunOptions run_options;
     run_options.dataset = data;
@@ -61,9 +40,10 @@ void AddDemoCommand(CLI::App& root, Action& action) {
     auto o = std::make_shared<DemoOptions>();
     auto* cmd = root.add_subcommand("demo", "Simulate a city drive with revisits and run the whole chain on it");
     cmd->footer(
-        "The first run simulates the sequence into ~/.cache/revisit (about a minute); later runs reuse it.\n"
-        "Then: odometry, closures, pose graph, evaluation against the simulator's ground truth, report.\n"
-        "Without --config it uses the 'sim' preset (finer odometry voxels for simulated worlds).\n"
+        "Reads the simulator's drive as a dataset (sim:PRESET): each scan is ray-cast as it is read, so\n"
+        "nothing but the run folder is written. Then: odometry, closures, pose graph, evaluation against\n"
+        "the simulator's ground truth, report. Settings follow the data as for any dataset; the same run\n"
+        "is `revisit run sim:demo`.\n"
         "Examples:\n"
         "  revisit demo\n"
         "  revisit demo --preset city-livox --config livox");

@@ -82,6 +82,27 @@ SimPlan PlanSimulation(const SimConfig& config) {
     return plan;
 }
 
+PlanSweeps::PlanSweeps(const SimConfig& config, const SimPlan& plan)
+    : config_(config), plan_(plan), fixed_pattern_(config.sensor.type != SensorType::kRosette && !config.sensor.azimuth_jitter) {
+    if (fixed_pattern_) rays_ = MakeRays(config.sensor, 0);
+}
+
+Scan PlanSweeps::Simulate(const RayCaster& caster, std::size_t k) const {
+    const std::vector<SensorRay> rays_of_k = fixed_pattern_ ? std::vector<SensorRay>{} : MakeRays(config_.sensor, k);
+    const std::vector<SensorRay>& rays = fixed_pattern_ ? rays_ : rays_of_k;
+    SweepInput sweep;
+    sweep.index = k;
+    sweep.timestamp = plan_.trajectory.timestamps[k];
+    sweep.T_world_sensor = plan_.trajectory.poses[k];
+    sweep.T_world_sensor_start = plan_.trajectory.poses[k > 0 ? k - 1 : 0];
+    const Eigen::Vector2d here = sweep.T_world_sensor.translation().head<2>();
+    for (const auto& car : plan_.world.moving_cars) {
+        OrientedBox box = car.BoxAt(sweep.timestamp, plan_.world.ground);
+        if ((box.center - here).norm() < config_.sensor.max_range + 5.0) sweep.dynamic_boxes.push_back(box);
+    }
+    return SimulateScan(caster, config_.sensor, rays, sweep, SessionSeed(config_));
+}
+
 SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, const SimProgress& progress) {
     const SimPlan plan = PlanSimulation(config);
     const RayCaster caster(plan.world);
@@ -92,9 +113,7 @@ SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, cons
     summary.primitives = plan.world.NumPrimitives();
     summary.revisits = plan.revisits.size();
     for (const auto& r : plan.revisits) summary.opposite_revisits += r.opposite ? 1 : 0;
-    const bool fixed_pattern = config.sensor.type != SensorType::kRosette && !config.sensor.azimuth_jitter;
-    std::vector<SensorRay> rays;
-    if (fixed_pattern) rays = MakeRays(config.sensor, 0);
+    const PlanSweeps sweeps(config, plan);
     tbb::task_group writing;
     Scan pending;
     struct WaitOnExit {  // a task_group must not be destroyed with a write in flight (exceptions)
@@ -107,18 +126,7 @@ SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, cons
         }
     } wait_on_exit{writing};
     for (std::size_t k = 0; k < plan.trajectory.size(); ++k) {
-        if (!fixed_pattern) rays = MakeRays(config.sensor, k);
-        SweepInput sweep;
-        sweep.index = k;
-        sweep.timestamp = plan.trajectory.timestamps[k];
-        sweep.T_world_sensor = plan.trajectory.poses[k];
-        sweep.T_world_sensor_start = plan.trajectory.poses[k > 0 ? k - 1 : 0];
-        const Eigen::Vector2d here = sweep.T_world_sensor.translation().head<2>();
-        for (const auto& car : plan.world.moving_cars) {
-            OrientedBox box = car.BoxAt(sweep.timestamp, plan.world.ground);
-            if ((box.center - here).norm() < config.sensor.max_range + 5.0) sweep.dynamic_boxes.push_back(box);
-        }
-        Scan scan = SimulateScan(caster, config.sensor, rays, sweep, SessionSeed(config));
+        Scan scan = sweeps.Simulate(caster, k);
         if (!plan.odometry.empty()) scan.T_odom_sensor = plan.odometry[k];
         summary.points += scan.points.size();
         // Write scan k while scan k+1 is cast: one write in flight, files still written in order.

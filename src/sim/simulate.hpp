@@ -8,6 +8,7 @@
 #include "io/writer.hpp"
 #include "sim/generators.hpp"
 #include "sim/odometry_noise.hpp"
+#include "sim/ray_caster.hpp"
 #include "sim/revisits.hpp"
 #include "sim/route.hpp"
 #include "sim/sensor.hpp"
@@ -61,6 +62,21 @@ using SimProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Builds the world and plans the route (reads `trajectory_file` for kAroundTrajectory).
 SimPlan PlanSimulation(const SimConfig& config);
+/// The sweeps of a plan one at a time (what SimulateSequence writes and `sim:` datasets read). Holds
+/// references: `config` and `plan` outlive it.
+class PlanSweeps {
+  public:
+    PlanSweeps(const SimConfig& config, const SimPlan& plan);
+    /// Sweep k of the plan (reference pose, time stamp, points in the sensor frame); no odometry prior.
+    Scan Simulate(const RayCaster& caster, std::size_t k) const;
+
+  private:
+    const SimConfig& config_;
+    const SimPlan& plan_;
+    bool fixed_pattern_;
+    std::vector<SensorRay> rays_;  ///< the rays of every sweep when the pattern is fixed
+};
+
 /// Simulates every scan of the plan and hands it to `writer` (then calls Finish()).
 SimSummary SimulateSequence(const SimConfig& config, DatasetWriter& writer, const SimProgress& progress = {});
 /// `revisit simulate`: KITTI folder (or a rawlog when `out` ends in .rawlog/.rawlog.gz) plus sim.yaml

@@ -1,0 +1,67 @@
+// `sim:PRESET` datasets: the scans the simulator writes, read without writing them.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "io/reader.hpp"
+#include "sim/presets.hpp"
+#include "sim/sim_reader.hpp"
+#include "test_data.hpp"
+
+namespace revisit {
+namespace {
+
+TEST(SimReader, ReadsTheScansTheKittiFolderOfTheSameConfigurationHolds) {
+    SimConfig config = SimPreset("tiny");
+    config.max_scans = 5;
+    test::TempDir dir;
+    RunSimulation(config, dir / "tiny", true);
+    auto folder = OpenDataset(dir / "tiny");
+    auto simulated = OpenSimulation(config, "sim:tiny");
+    ASSERT_EQ(simulated->Info().num_scans, folder->Info().num_scans);
+    EXPECT_EQ(simulated->Info().format, "sim");
+    EXPECT_TRUE(simulated->Info().has_reference_poses);
+    std::size_t scans = 0;
+    while (auto expected = folder->Next()) {
+        const auto scan = simulated->Next();
+        ASSERT_TRUE(scan.has_value()) << "scan " << expected->index;
+        EXPECT_EQ(scan->index, expected->index);
+        ASSERT_EQ(scan->points.size(), expected->points.size()) << "scan " << expected->index;
+        // Bit for bit: the folder holds the same float32 values.
+        for (std::size_t i = 0; i < scan->points.size(); ++i) {
+            ASSERT_EQ(scan->points[i], expected->points[i]) << "scan " << expected->index << " point " << i;
+        }
+        EXPECT_EQ(scan->intensities, expected->intensities);
+        EXPECT_EQ(scan->sensor_label, expected->sensor_label);
+        EXPECT_FALSE(scan->has_point_times());
+        EXPECT_FALSE(scan->T_odom_sensor.has_value());
+        // times.txt and poses.txt keep 9 decimals.
+        EXPECT_NEAR(scan->timestamp, expected->timestamp, 1e-9);
+        ASSERT_TRUE(scan->T_world_sensor && expected->T_world_sensor);
+        EXPECT_TRUE(scan->T_world_sensor->isApprox(*expected->T_world_sensor, 1e-8));
+        ++scans;
+    }
+    EXPECT_EQ(scans, 5u);
+    EXPECT_FALSE(simulated->Next().has_value());
+}
+
+TEST(SimReader, OpenDatasetReadsAPresetByNameAndNamesAnUnknownOne) {
+    RegisterSimulatorDatasets();
+    EXPECT_TRUE(IsSchemeDataset("sim:tiny"));
+    EXPECT_FALSE(IsSchemeDataset("tiny"));
+    EXPECT_EQ(DatasetName("sim:tiny"), "sim:tiny");  // never made absolute: `eval` opens it again
+    auto reader = OpenDataset("sim:tiny");
+    EXPECT_EQ(reader->Info().num_scans, PlanSimulation(SimPreset("tiny")).trajectory.size());
+    const auto first = reader->Next();
+    ASSERT_TRUE(first.has_value());
+    EXPECT_GT(first->points.size(), 1000u);
+    try {
+        OpenDataset("sim:no-such-preset");
+        FAIL() << "an unknown preset was accepted";
+    } catch (const DatasetError& error) {
+        EXPECT_NE(std::string(error.what()).find("sim:no-such-preset"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("tiny"), std::string::npos) << "names the known presets: " << error.what();
+    }
+}
+
+}  // namespace
+}  // namespace revisit
