@@ -1,21 +1,35 @@
 #!/usr/bin/env bash
 # Installs the Debian bookworm packages revisit needs. A no-op when they are all installed.
-# Usage: scripts/setup-debian.sh [--fuzz]   (clang and its fuzzer runtime are always installed)
+# Usage: scripts/setup-debian.sh          what building and running `revisit` needs (`make build`, `make demo`)
+#        scripts/setup-debian.sh --test   also what the test suite, the fuzz smoke and `make bench` need
+#        scripts/setup-debian.sh --fuzz   the same as --test (kept for scripts/fuzz.sh)
 set -euo pipefail
 
+# Building and running revisit.
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libtbb-dev robin-map-dev libopencv-dev libceres-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   libmrpt-maps-dev libmrpt-opengl-dev libmrpt-img-dev mrpt-common libosmesa6-dev
-  libgtest-dev libbenchmark-dev
-  chromium
-  clang libclang-rt-14-dev ccache
-  slurm-wlm munge
 )
-# slurm-wlm and munge: `revisit batch --engine slurm` and its test, which starts a single-node cluster.
-# --fuzz is kept for scripts/fuzz.sh; clang and its fuzzer runtime are part of the normal setup, since
-# the test suite's fuzz smoke needs them.
+case "${1:-}" in
+  "") ;;
+  --test | --fuzz)
+    packages+=(
+      libgtest-dev libbenchmark-dev ccache
+      # the fuzz smoke (libFuzzer needs clang and its runtime)
+      clang libclang-rt-14-dev
+      # `revisit batch --engine slurm` and its test, which starts a single-node cluster
+      slurm-wlm munge
+      # the report's page tests render the pages in headless Chromium
+      chromium
+    )
+    ;;
+  *)
+    echo "usage: scripts/setup-debian.sh [--test]" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for package in "${packages[@]}"; do
