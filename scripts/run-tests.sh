@@ -11,19 +11,30 @@ ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" "$@" | tee "$build_
 status=${PIPESTATUS[0]}
 
 log="$build_dir/Testing/Temporary/LastTest.log"
+grep -E '\*\*\*Skipped' "$build_dir/ctest-output.txt" | sed -E 's/.*Test +#[0-9]+: ([^ ]+) .*/\1/' > "$build_dir/skipped-tests.txt" || true
 if [[ -f "$log" ]]; then
-  # Each test's output sits between "Output:" and "<end of output>"; GoogleTest writes a skip as
-  # "FILE:LINE: Skipped", the reason on the following lines, then "[  SKIPPED ] NAME".
+  # ctest names the skipped tests ("N/M Test #K: NAME ....***Skipped"); their output in LastTest.log
+  # gives the reason: GoogleTest writes "FILE:LINE: Skipped" then the reason up to "[  SKIPPED ]";
+  # other tests (SKIP_RETURN_CODE) print it as their last line.
   awk '
-    /^[0-9]+\/[0-9]+ Test: / { name = $3; next }
-    /: Skipped$/ { in_reason = 1; reason = ""; next }
-    in_reason && /^\[  SKIPPED \]/ { in_reason = 0; skipped[name] = reason; order[++n] = name; next }
+    FNR == NR { wanted[$1] = 1; next }
+    /^[0-9]+\/[0-9]+ Test: / { name = $3; in_output = 0; in_reason = 0; reason = ""; last_line = ""; next }
+    /^Output:$/ { in_output = 1; next }
+    /^<end of output>$/ {
+      in_output = 0
+      if (name in wanted) { order[++n] = name; why[name] = (reason != "" ? reason : last_line) }
+      next
+    }
+    !in_output { next }
+    /: Skipped$/ { in_reason = 1; next }
+    in_reason && /^\[  SKIPPED \]/ { in_reason = 0; next }
     in_reason { reason = reason (reason == "" ? "" : " ") $0; next }
+    NF > 0 && !/^-+$/ { last_line = $0 }
     END {
       if (n == 0) exit
       printf "\n%d test(s) skipped, with their reasons:\n", n
-      for (i = 1; i <= n; ++i) printf "  skipped %s: %s\n", order[i], (skipped[order[i]] == "" ? "(no reason given)" : skipped[order[i]])
-    }' "$log"
+      for (i = 1; i <= n; ++i) printf "  skipped %s: %s\n", order[i], (why[order[i]] == "" ? "(no reason given)" : why[order[i]])
+    }' "$build_dir/skipped-tests.txt" "$log"
 fi
 
 # One closing line a reader (or CI) can take in at a glance.
@@ -31,7 +42,7 @@ summary=$(grep -E "tests passed, [0-9]+ tests failed out of [0-9]+" "$build_dir/
 if [[ -n "$summary" ]]; then
   total=$(sed -E 's/.* out of ([0-9]+).*/\1/' <<<"$summary")
   failed=$(sed -E 's/.*tests passed, ([0-9]+) tests failed.*/\1/' <<<"$summary")
-  skipped=$(grep -cE "\*\*\*Skipped|Not Run" "$build_dir/ctest-output.txt" || true)
+  skipped=$(wc -l < "$build_dir/skipped-tests.txt")
   echo
   echo "tests: $((total - failed - skipped)) passed, $failed failed, $skipped skipped"
 fi
