@@ -60,7 +60,7 @@ void AddOdometryCommand(CLI::App& root, Action& action) {
     auto o = std::make_shared<OdometryOptions>();
     auto* cmd = root.add_subcommand("odometry", "Run the LiDAR odometry alone and write its poses");
     cmd->footer(
-        "KISS-ICP-class scan-to-map ICP (METHOD.md section 1). Writes OUT/poses_kitti.txt (3x4 per line) and\n"
+        "KISS-ICP-class scan-to-map ICP (docs/method.md). Writes OUT/poses_kitti.txt (3x4 per line) and\n"
         "OUT/poses_tum.txt (t x y z qx qy qz qw), poses of the sensor in the first scan's frame.\n"
         "Examples:\n"
         "  revisit odometry ~/kitti/sequences/00 --config kitti --out odo00\n"

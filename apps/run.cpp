@@ -65,7 +65,7 @@ void AddRunCommand(CLI::App& root, Action& action) {
     auto* cmd = root.add_subcommand("run", "Find loop closures and correct the trajectory of a dataset");
     cmd->footer(
         "Streams the dataset: odometry, local maps, density images, ORB, Hamming tree, RANSAC, 3D refinement\n"
-        "and the pose graph, as scans arrive. Writes a run folder (see README: Output files) and, when the\n"
+        "and the pose graph, as scans arrive. Writes a run folder (docs/formats.md lists its files) and, when the\n"
         "dataset has reference poses or --gt is given, precision/recall/F1 and APE. Ctrl-C stops cleanly\n"
         "and writes what was computed (run.json: complete = false).\n"
         "Settings no --config/--set gives are derived from the first scans (ranges, field of view, points per\n"
@@ -75,7 +75,7 @@ void AddRunCommand(CLI::App& root, Action& action) {
         "  revisit run intel.rawlog --config indoor2d --out runs/intel   (the 180-deg aperture is measured)\n"
         "  revisit run seq/ --poses dataset --set density.resolution=0.2 --threads 2\n"
         "  revisit run day2/ --against runs/day1 --out runs/day2   (joint result in runs/day2/merge)");
-    cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, or .rawlog[.gz]")->required();
+    cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, .rawlog[.gz], or sim:PRESET (the simulator)")->required();
     AddConfigOptions(*cmd, o->config);
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
     cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its poses) or a KITTI/TUM FILE")->capture_default_str();

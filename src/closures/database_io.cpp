@@ -6,6 +6,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 #include "core/png_size.hpp"
 #include "core/atomic_file.hpp"
@@ -134,8 +135,7 @@ void SaveDatabase(const ClosureDetector& detector, const std::filesystem::path& 
 }
 
 ClosureDetector LoadDatabase(const std::filesystem::path& file, const ClosureDetectorConfig& config) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw DatasetError(file, "cannot open closure database");
+    std::ifstream in = OpenForReading(file, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     constexpr std::size_t header = sizeof(kMagic) + sizeof(std::uint32_t) + sizeof(std::uint64_t);
     if (bytes.size() < header || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {

@@ -10,7 +10,7 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("input.follow_scene_scale", &c.input.follow_scene_scale, "",
           "with auto_settings: odometry.max_range follows the scene's 99% range as the sequence unfolds (when not given)");
     s.Add("input.kitti_vertical_correction", &c.input.kitti_vertical_correction, "",
-          "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (METHOD.md 1)");
+          "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (docs/method.md, odometry)");
     s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all)");
     s.Add("input.laser_aperture_deg", &c.input.laser_aperture_deg, "deg",
           "2D lasers: field of view replacing the file's (0: the file's; radish intel.rawlog needs 180)", Range{0, 360});
@@ -22,7 +22,7 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.initial_threshold", &o.initial_threshold, "m", "adaptive threshold before motion (KISS-ICP: 2.0)", Range{0.01, 100});
     s.Add("odometry.min_motion_th", &o.min_motion_th, "m", "a frame updates the threshold only above this motion (KISS-ICP: 0.1)", Range{0, 10});
     s.AddEnum("odometry.kernel", &o.kernel, {{"paper", IcpKernel::kPaper}, {"later", IcpKernel::kLater}},
-              "Geman-McClure scale: paper-era sigma/3, later sigma (METHOD.md 1)");
+              "Geman-McClure scale: paper-era sigma/3, later sigma (docs/method.md, odometry)");
     s.AddEnum("odometry.residual", &o.residual,
               {{"point_to_plane", IcpResidual::kPointToPlane}, {"point_to_point", IcpResidual::kPointToPoint}},
               "point_to_plane: along planar map voxels' normals, planes alone when they fix every translation (data: rings >= 1 deg apart); KISS-ICP's point_to_point");
@@ -66,7 +66,7 @@ void BindMapsAndImages(ConfigSchema& s, PipelineConfig& c) {
               {{"fraction_of_max", DensityThreshold::kFractionOfMax}, {"byte_scale", DensityThreshold::kByteScale}},
               "what min_density is compared with: paper text (fraction of max) or paper-era code (0-255 scale)");
     s.AddEnum("density.scaling", &d.scaling, {{"min_max", DensityScaling::kMinMax}, {"percentile", DensityScaling::kPercentile}},
-              "count to intensity: paper min-max, or a robust percentile (METHOD.md 5b)");
+              "count to intensity: paper min-max, or a robust percentile (docs/method.md, density image)");
     s.Add("density.scale_percentile", &d.scale_percentile, "", "percentile scaling: this quantile maps to 255", Range{0.5, 1});
     s.Add("density.elevation_instead", &d.elevation_instead, "", "ablation: max height per cell instead of counts");
     s.Add("density.target_extent_pixels", &d.target_extent_pixels, "px", "resolution from the map extent; 0 = fixed", Range{0, 100000});
@@ -124,7 +124,7 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("refinement.initial_max_distance", &r.initial_max_distance, "m", "correspondence gate at the start", Range{0.01, 100});
     s.Add("refinement.vertical_search", &r.vertical_search, "m",
           "before ICP, try offsets along the vertical within +-this (a 2D closure knows no height; 0 = off)", Range{0, 100});
-    s.Add("refinement.max_correspondence_distance", &r.max_correspondence_distance, "m", "final gate (METHOD.md 5: ~0.9)", Range{0.01, 100});
+    s.Add("refinement.max_correspondence_distance", &r.max_correspondence_distance, "m", "final gate (paper: ~0.9)", Range{0.01, 100});
     s.Add("refinement.loss_scale", &r.loss_scale, "m", "Cauchy scale of the point-to-plane residual", Range{0.001, 100});
     s.Add("refinement.max_iterations", &r.max_iterations, "", "outer ICP iterations", Range{1, 1000});
     s.Add("refinement.min_overlap", &r.min_overlap, "", "accept above this voxel overlap (KISS-SLAM: 0.4)", Range{0, 1});
@@ -143,7 +143,7 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
           "odometry edge sigma per metre travelled (1%; cautious: a robust loss rejects true closures if too small)", Range{1e-6, 1});
     s.Add("graph.odometry_rotation_per_m", &n.odometry_rotation_per_m, "rad/m", "odometry rotation sigma per metre (3e-4)", Range{1e-8, 1});
     s.Add("graph.closure_information_from_registration", &n.closure_information_from_registration, "", "closure information from the 3D registration");
-    s.Add("graph.closure_sigma_translation", &n.closure_sigma_translation, "m", "fixed closure noise (METHOD.md 6: 1e3 x identity)", Range{1e-6, 100});
+    s.Add("graph.closure_sigma_translation", &n.closure_sigma_translation, "m", "fixed closure noise (paper: 1e3 x identity)", Range{1e-6, 100});
     s.Add("graph.closure_sigma_rotation", &n.closure_sigma_rotation, "rad", "fixed closure noise", Range{1e-6, 10});
     s.Add("graph.optimize_every_closures", &n.optimize_every_closures, "", "online re-optimization period", Range{1, 100000});
     s.Add("graph.online_time_budget", &n.online_time_budget, "s", "time bound per online update", Range{0.001, 1000});
@@ -170,7 +170,7 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
           "the calibrated rate never goes below this (the 3D default rate)", Range{0, 1});
     auto& prox = c.proximity;
     s.Add("proximity.enabled", &prox.enabled, "",
-          "after the final optimization, register maps the corrected poses lay over each other (README: closures from the corrected map)");
+          "after the final optimization, register maps the corrected poses lay over each other (docs/method.md: at the end of the run)");
     s.Add("proximity.rounds", &prox.rounds, "", "passes, each from the estimate the previous one improved", Range{0, 100});
     s.Add("proximity.min_overlap", &prox.min_overlap, "",
           "predicted share of the smaller map's ground cells (1/20 of a map length) from which a pair is registered", Range{0, 1});
@@ -183,7 +183,7 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
 
 void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     auto& g = c.ground_truth;
-    s.Add("evaluation.segment_length", &g.segment_length, "m", "ground-truth segments (METHOD.md 7: 2)", Range{0.01, 1000});
+    s.Add("evaluation.segment_length", &g.segment_length, "m", "ground-truth segments (paper: 2)", Range{0.01, 1000});
     s.Add("evaluation.voxel_size", &g.voxel_size, "m", "overlap voxels (0.5)", Range{0.01, 100});
     s.Add("evaluation.min_overlap", &g.min_overlap, "", "a closure above this overlap (0.5)", Range{0, 1});
     s.Add("evaluation.max_range", &g.max_range, "m", "segments farther apart are skipped (sensor range)", Range{0.1, 10000});

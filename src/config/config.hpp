@@ -35,7 +35,7 @@ struct GraphNoiseConfig {
     double odometry_translation_per_m = 0.01;  ///< [m/m] odometry edge sigma per metre between map origins (1%)
     double odometry_rotation_per_m = 3e-4;     ///< [rad/m] (~1.7 deg per 100 m)
     bool closure_information_from_registration = false;  ///< else a fixed closure sigma below
-    double closure_sigma_translation = 0.03;  ///< [m] ~ 1e3 x identity information (METHOD.md 6)
+    double closure_sigma_translation = 0.03;  ///< [m] ~ 1e3 x identity information (paper)
     double closure_sigma_rotation = 0.03;     ///< [rad]
     int optimize_every_closures = 1;          ///< online: re-optimize after this many accepted closures
     double online_time_budget = 0.2;          ///< [s] per online update (the final batch has none)
@@ -44,7 +44,7 @@ struct GraphNoiseConfig {
     double min_weight = 0.1;
 };
 
-/// The proximity pass (README, "Closures from the corrected map"): after the final optimization, maps
+/// The proximity pass (docs/method.md, "At the end of the run"): after the final optimization, maps
 /// that the corrected poses lay over each other are registered directly from that estimate, verified
 /// like any closure, and join the graph when they agree with every accepted closure.
 struct ProximityConfig {
@@ -55,7 +55,7 @@ struct ProximityConfig {
     double min_overlap = 0.3;
     int max_per_map = 3;        ///< registrations per map and round, largest predicted overlap first (cost bound)
     /// With fewer consistent detector closures than this, the pass first registers the maps the odometry
-    /// itself lays over each other, and those closures may displace the detector's (README: the odometry's
+    /// itself lays over each other, and those closures may displace the detector's (docs/method.md: the odometry's
     /// own overlays); 0: never.
     int odometry_check_below = 3;
 };

@@ -92,6 +92,11 @@ std::optional<double> ConfigSchema::Number(const std::string& key) const {
 void ConfigSchema::SetValue(const Entry& entry, const YAML::Node& value, const std::string& source) {
     const std::string where = source + ": " + entry.key;
     assigned_.insert(entry.key);
+    // `--set key=` and `key:` with nothing after it: an empty text, which is what text keys default to.
+    if (value.IsNull() && std::holds_alternative<std::string*>(entry.field)) {
+        std::get<std::string*>(entry.field)->clear();
+        return;
+    }
     if (!value.IsScalar()) throw ConfigError(where + ": expected a single value, got '" + YAML::Dump(value) + "'");
     const auto check_range = [&](double v) {
         if (!std::isfinite(v)) throw ConfigError(where + ": value must be finite");

@@ -146,6 +146,26 @@ void WriteKittiPoses(const std::filesystem::path& file, const Poses& poses) {
     });
 }
 
+Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T) {
+    std::ostringstream text;
+    text << std::setprecision(9) << std::fixed;
+    const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) text << (r + c == 0 ? "" : " ") << M(r, c);
+    }
+    std::vector<double> v;
+    ParseNumbers(text.str(), v);
+    Eigen::Matrix3d R;
+    R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+    return CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), "(pose in memory)", 0);
+}
+
+double AsStoredTime(double t) {
+    std::ostringstream text;
+    text << std::setprecision(9) << std::fixed << t;
+    return std::strtod(text.str().c_str(), nullptr);
+}
+
 void WriteTumPoses(const std::filesystem::path& file, const Trajectory& trajectory) {
     if (!trajectory.has_timestamps() && !trajectory.empty()) {
         throw DatasetError(file, "TUM output needs one timestamp per pose");

@@ -22,6 +22,11 @@ void WriteKittiPoses(const std::filesystem::path& file, const Poses& poses);
 void WriteTumPoses(const std::filesystem::path& file, const Trajectory& trajectory);
 void WriteTimes(const std::filesystem::path& file, const std::vector<double>& timestamps);
 
+/// A pose and a time exactly as WriteKittiPoses / WriteTimes store them and the readers read them back
+/// (9 decimals): what a dataset written to disk holds, for readers that make their data in memory.
+Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T);
+double AsStoredTime(double t);
+
 /// For each query time, the index of the trajectory entry with the nearest timestamp, or -1 when
 /// the nearest is farther than max_dt [s]. Trajectory timestamps must be sorted.
 std::vector<long> AssociateByTime(const std::vector<double>& trajectory_times,

@@ -1,6 +1,6 @@
 #pragma once
 /// Which local maps the corrected poses lay over each other: the candidates of the proximity pass
-/// (README, "Closures from the corrected map"). Each map keeps a coarse footprint, the ground cells
+/// (docs/method.md, "At the end of the run"). Each map keeps a coarse footprint, the ground cells
 /// its points occupy in its own frame; placed by the maps' poses, footprints that share many cells
 /// are maps worth registering directly, whether or not their images ever matched.
 #include <Eigen/Core>

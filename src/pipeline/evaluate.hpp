@@ -30,7 +30,7 @@ struct RunEvaluation {
     MapMetrics map_metrics;
     MapRecall map_recall;
     ClosureTruth truth;          ///< the accepted closures that correct the trajectory, in run order
-    std::size_t proximity_true = 0;   ///< of those, the proximity pass's (README: closures from the corrected map)
+    std::size_t proximity_true = 0;   ///< of those, the proximity pass's (docs/method.md: at the end of the run)
     std::size_t proximity_false = 0;
     RevisitCoverage coverage;
     MissedRevisits missed;

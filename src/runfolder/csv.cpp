@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 #include "core/se3.hpp"
 
@@ -55,8 +56,7 @@ std::vector<std::string> PoseColumns(const std::string& prefix) {
 }
 
 CsvTable CsvTable::Read(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    if (!in) throw DatasetError(file, "cannot open");
+    std::ifstream in = OpenForReading(file);
     CsvTable table;
     table.file_ = file;
     std::string line;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 #include "core/atomic_file.hpp"
 #include "io/trajectory_io.hpp"
@@ -52,8 +53,7 @@ void WriteJson(const fs::path& file, const json& value) {
 }
 
 json ReadJson(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw DatasetError(file, "cannot open");
+    std::ifstream in = OpenForReading(file);
     try {
         return json::parse(in);
     } catch (const json::exception& e) {

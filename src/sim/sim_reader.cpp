@@ -40,6 +40,9 @@ class SimulationReader final : public Reader {
         scan.planar_beams.reset();
         if (!scan.has_intensities()) scan.intensities.assign(scan.points.size(), 0.f);
         scan.sensor_label = "VELODYNE";
+        // poses.txt and times.txt keep 9 decimals: the same values as the folder, to the bit.
+        scan.timestamp = AsStoredTime(scan.timestamp);
+        if (scan.T_world_sensor) scan.T_world_sensor = AsStoredKittiPose(*scan.T_world_sensor);
         if (!reference_.empty()) scan.T_world_sensor = reference_[k];
         stats_.scans++;
         stats_.points += scan.points.size();

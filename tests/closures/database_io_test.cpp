@@ -103,7 +103,10 @@ TEST(ClosureDatabase, RefusesMismatchedOrCorruptFilesWithAClearError) {
     write("hello world, not a database");
     ExpectLoadError(file, config, "bad magic");
     std::filesystem::remove(file);
-    ExpectLoadError(file, config, "cannot open");
+    ExpectLoadError(file, config, "no such file");
+    std::filesystem::create_directory(file);  // a folder where the database should be
+    ExpectLoadError(file, config, "is a folder, expected a file");
+    std::filesystem::remove(file);
 }
 
 }  // namespace

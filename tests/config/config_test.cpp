@@ -77,5 +77,15 @@ TEST(Configs, OverridesComeLastAndUnknownKeysNameTheClosest) {
     }
 }
 
+TEST(Configs, AnEmptyTextValueIsTheEmptyDefault) {
+    // `--set input.sensor_label=` (empty, the documented default) and a file's `sensor_label:`.
+    const auto given = LoadConfig({}, {"input.sensor_label=VELODYNE"});
+    EXPECT_EQ(given.input.sensor_label, "VELODYNE");
+    const auto empty = LoadConfig({}, {"input.sensor_label="});
+    EXPECT_EQ(empty.input.sensor_label, "");
+    // A number key still needs a number.
+    EXPECT_THROW(LoadConfig({}, {"density.resolution="}), ConfigError);
+}
+
 }  // namespace
 }  // namespace revisit

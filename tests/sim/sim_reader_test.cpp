@@ -34,10 +34,10 @@ TEST(SimReader, ReadsTheScansTheKittiFolderOfTheSameConfigurationHolds) {
         EXPECT_EQ(scan->sensor_label, expected->sensor_label);
         EXPECT_FALSE(scan->has_point_times());
         EXPECT_FALSE(scan->T_odom_sensor.has_value());
-        // times.txt and poses.txt keep 9 decimals.
-        EXPECT_NEAR(scan->timestamp, expected->timestamp, 1e-9);
+        // The values times.txt and poses.txt hold (9 decimals), to the bit.
+        EXPECT_EQ(scan->timestamp, expected->timestamp);
         ASSERT_TRUE(scan->T_world_sensor && expected->T_world_sensor);
-        EXPECT_TRUE(scan->T_world_sensor->isApprox(*expected->T_world_sensor, 1e-8));
+        EXPECT_TRUE(scan->T_world_sensor->matrix() == expected->T_world_sensor->matrix()) << "scan " << expected->index;
         ++scans;
     }
     EXPECT_EQ(scans, 5u);
