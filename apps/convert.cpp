@@ -9,7 +9,7 @@
 namespace revisit::app {
 namespace {
 struct ConvertOptions {
-    std::string input, output, sensor;
+    std::string input, output, sensor, topic;
     bool force = false;
     bool planar = false;
     int beams = 360;
@@ -20,6 +20,7 @@ int RunConvert(const ConvertOptions& options) {
     RefuseOutputOverInput(options.input, options.output);  // before anything is opened, even with --force
     ReaderOptions reader_options;
     reader_options.sensor_label = options.sensor;
+    reader_options.points_topic = options.topic;
     auto reader = OpenDataset(options.input, reader_options);
     WriterOptions writer_options;
     writer_options.planar_as_range_scan = options.planar;
@@ -52,9 +53,10 @@ void AddConvertCommand(CLI::App& root, Action& action) {
         "  revisit convert ~/kitti/sequences/00 seq00.rawlog.gz\n"
         "  revisit convert intel.rawlog intel_kitti/\n"
         "  revisit convert intel_kitti/ intel2d.rawlog --planar --beams 180 --aperture 180");
-    cmd->add_option("input", options->input, "KITTI folder, .pcd/.ply folder, or .rawlog[.gz]")->required();
+    cmd->add_option("input", options->input, "KITTI folder, .pcd/.ply folder, .rawlog[.gz], or ROS bag (.mcap, .bag, rosbag2 folder)")->required();
     cmd->add_option("output", options->output, "KITTI folder, or file ending in .rawlog / .rawlog.gz")->required();
     cmd->add_option("--sensor", options->sensor, "rawlog input: only scans with this sensor label");
+    cmd->add_option("--topic", options->topic, "ROS bag input: the scan topic (when several fit)");
     cmd->add_flag("--force", options->force, "write into an existing non-empty folder / overwrite a file");
     cmd->add_flag("--planar", options->planar, "rawlog output: store planar scans as CObservation2DRangeScan");
     cmd->add_option("--beams", options->beams, "with --planar: beams per scan")->check(CLI::Range(2, 100000));

@@ -75,8 +75,10 @@ void AddRunCommand(CLI::App& root, Action& action) {
         "  revisit run intel.rawlog --config indoor2d --out runs/intel   (the 180-deg aperture is measured)\n"
         "  revisit run seq/ --poses dataset --set density.resolution=0.2 --threads 2\n"
         "  revisit run day2/ --against runs/day1 --out runs/day2   (joint result in runs/day2/merge)");
-    cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, .rawlog[.gz], or sim:PRESET (the simulator)")->required();
+    cmd->add_option("dataset", o->run.dataset, "KITTI folder, .pcd/.ply folder, .rawlog[.gz], ROS bag (.mcap, .bag, rosbag2 folder) or sim:PRESET")->required();
     AddConfigOptions(*cmd, o->config);
+    cmd->add_option("--topic", "ROS bags: the scan topic (sets input.topic)")
+        ->each([o](const std::string& topic) { o->config.overrides.push_back("input.topic=" + topic); });
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
     cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its poses) or a KITTI/TUM FILE")->capture_default_str();
     cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI or TUM) for evaluation");
@@ -88,7 +90,7 @@ void AddRunCommand(CLI::App& root, Action& action) {
     cmd->add_flag("--force", o->run.force, "write into an existing non-empty run folder");
     cmd->add_flag("--quiet", o->run.quiet, "no progress output");
     cmd->add_flag("--allow-truncated", o->run.allow_truncated,
-                  "a damaged or truncated rawlog: use the scans read before the damage (run.json: truncated)");
+                  "a damaged or truncated rawlog or MCAP: use the scans read before the damage (run.json: truncated)");
     cmd->callback([o, &action] { action = [o] { return RunRun(*o); }; });
 }
 

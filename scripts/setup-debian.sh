@@ -11,6 +11,10 @@ packages=(
   libeigen3-dev libtbb-dev robin-map-dev libopencv-dev libceres-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   libmrpt-maps-dev libmrpt-opengl-dev libmrpt-img-dev mrpt-common libosmesa6-dev
+  # ROS bags: MCAP chunks, rosbag2 sqlite3, ROS 1 bags through Debian's rosbag_storage (+ the message
+  # packages whose types the bags carry)
+  libzstd-dev liblz4-dev libsqlite3-dev librosbag-storage-dev librcpputils-dev librcutils-dev
+  libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev
 )
 case "${1:-}" in
   "") ;;

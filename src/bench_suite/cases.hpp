@@ -33,6 +33,8 @@ struct CaseContext {
 };
 
 void ReaderCases(const CaseContext& c);
+/// The shared Livox walk read from its KITTI folder and from each ROS bag format.
+void BagReaderCases(const CaseContext& c);
 void OdometryCases(const CaseContext& c);
 void LocalMapCases(const CaseContext& c);
 void ClosureStageCases(const CaseContext& c);

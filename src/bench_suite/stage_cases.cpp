@@ -91,6 +91,21 @@ void ReaderCases(const CaseContext& c) {
         MeasureReader(c, "intel.rawlog", c.data_dir / "radish/intel.rawlog", M_PI, "13,631 real 2D scans, MRPT rawlog");
 }
 
+void BagReaderCases(const CaseContext& c) {
+    // The same 266 Livox scans as a KITTI folder and as each ROS bag format (../shared/data/bags).
+    if (c.Need("livox_handheld_walk", "reader/livox walk KITTI"))
+        MeasureReader(c, "livox walk KITTI", c.data_dir / "livox_handheld_walk", 0.0, "266 Livox scans, KITTI .bin + poses.txt");
+    const std::pair<const char*, const char*> bags[] = {
+        {"livox_walk.mcap", "MCAP, zstd chunks"},          {"livox_walk_uncompressed.mcap", "MCAP, uncompressed chunks"},
+        {"livox_walk_db3", "rosbag2 sqlite3 (Humble)"},    {"livox_walk.bag", "ROS 1 bag, uncompressed chunks"},
+        {"livox_walk_bz2.bag", "ROS 1 bag, bz2 chunks"}};
+    for (const auto& [name, note] : bags) {
+        const std::string label = std::string("livox walk ") + name;
+        if (c.Need(std::filesystem::path("bags") / name, "reader/" + label))
+            MeasureReader(c, label, c.data_dir / "bags" / name, 0.0, std::string("the same 266 scans + /odom + /ground_truth, ") + note);
+    }
+}
+
 /// Scans [skip, skip + n) of a preset: the routes start from standstill, where ICP converges in a
 /// couple of iterations and odometry looks faster than at cruising speed.
 std::vector<Scan> Cruising(const CaseContext& c, const std::string& preset, std::size_t skip, std::size_t n) {

@@ -17,7 +17,8 @@ struct CaseGroup {
 
 /// Run order: end_to_end first so that the peak memory it reports is the pipeline's, not the fixtures'.
 const CaseGroup kGroups[] = {
-    {"end_to_end", EndToEndCases},   {"reader", ReaderCases},         {"odometry", OdometryCases},
+    {"end_to_end", EndToEndCases},   {"reader", ReaderCases},         {"bag_reader", BagReaderCases},
+    {"odometry", OdometryCases},
     {"local_map", LocalMapCases},    {"closures", ClosureStageCases}, {"tree", TreeCases},
     {"fleet_tree", FleetTreeCases},
     {"refinement", RefinementCases}, {"pose_graph", PoseGraphCases},  {"ground_truth", GroundTruthCases},

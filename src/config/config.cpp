@@ -12,6 +12,11 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("input.kitti_vertical_correction", &c.input.kitti_vertical_correction, "",
           "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (docs/method.md, odometry)");
     s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all)");
+    s.Add("input.topic", &c.input.topic, "", "ROS bags: the PointCloud2 or LaserScan topic (empty: the only one; --topic)");
+    s.Add("input.odometry_topic", &c.input.odometry_topic, "",
+          "ROS bags: the nav_msgs/Odometry topic giving the odometry prior (empty: the only one; none: no prior)");
+    s.Add("input.reference_topic", &c.input.reference_topic, "",
+          "ROS bags: PoseStamped, Path or Odometry topic of reference poses (empty: the only PoseStamped/Path; none: none)");
     s.Add("input.laser_aperture_deg", &c.input.laser_aperture_deg, "deg",
           "2D lasers: field of view replacing the file's (0: the file's; radish intel.rawlog needs 180)", Range{0, 360});
     auto& o = c.odometry;
@@ -246,6 +251,9 @@ ReaderOptions MakeReaderOptions(const InputConfig& input) {
     options.sensor_label = input.sensor_label;
     options.kitti_vertical_correction = input.kitti_vertical_correction;
     options.laser_aperture = input.laser_aperture_deg * M_PI / 180.0;
+    options.points_topic = input.topic;
+    options.odometry_topic = input.odometry_topic;
+    options.reference_topic = input.reference_topic;
     return options;
 }
 

@@ -29,6 +29,11 @@ struct InputConfig {
     bool kitti_vertical_correction = false;  ///< KITTI HDL-64E: rotate points by 0.205 deg (configs/kitti.yaml)
     std::string sensor_label;                ///< rawlogs: only this sensor ("" = all)
     double laser_aperture_deg = 0.0;         ///< [deg] 2D lasers: replaces the file's aperture (0: keep)
+    /// ROS bags: the scan topic (PointCloud2 or LaserScan), the odometry prior (Odometry) and the
+    /// reference poses (PoseStamped, Path or Odometry); "" = the only topic of a fitting type, "none" = none.
+    std::string topic;
+    std::string odometry_topic;
+    std::string reference_topic;
 };
 
 struct GraphNoiseConfig {

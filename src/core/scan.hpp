@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@ struct PlanarBeams {
 struct Scan {
     std::size_t index = 0;                 ///< position in the sequence, from 0
     double timestamp = 0.0;                ///< [s] sensor clock (KITTI: times.txt)
+    std::int64_t stamp_ns = 0;             ///< [ns] the same stamp exactly, when the format has one (ROS bags), else 0
     std::string sensor_label;              ///< e.g. "VELODYNE", "LASER"; file format name when unknown
     std::vector<Eigen::Vector3f> points;   ///< [m] in the sensor frame, finite only
     std::vector<float> intensities;        ///< one per point, or empty when the format has none

@@ -127,7 +127,7 @@ bool IsKittiFolder(const fs::path& path) {
 std::unique_ptr<Reader> OpenKittiFolder(const fs::path& path, const ReaderOptions& options) {
     const fs::path root = KittiRoot(path);
     auto files = FilesWithExtension(root / "velodyne", ".bin");
-    DatasetInfo info{"kitti", path, files.size(), false, {}, {}};
+    DatasetInfo info{"kitti", path, files.size(), false, {}, {}, {}};
     // The official layout keeps ground truth apart: <root>/sequences/NN and <root>/poses/NN.txt.
     const fs::path official = root.parent_path().filename() == "sequences"
                                   ? root.parent_path().parent_path() / "poses" / (root.filename().string() + ".txt")
@@ -160,7 +160,7 @@ std::unique_ptr<Reader> OpenCloudFolder(const fs::path& path, const ReaderOption
     }
     if (!pcd.empty() && !ply.empty()) throw DatasetError(path, "folder mixes .pcd and .ply files; keep one format");
     const bool is_pcd = !pcd.empty();
-    DatasetInfo info{is_pcd ? "pcd" : "ply", path, std::nullopt, false, {}, {}};
+    DatasetInfo info{is_pcd ? "pcd" : "ply", path, std::nullopt, false, {}, {}, {}};
     info.poses_file = FirstExisting({options.poses_file, path / "poses.txt", path / "poses_tum.txt"});
     if (!options.poses_file.empty() && info.poses_file != options.poses_file) {
         throw DatasetError(options.poses_file, "no such poses file");

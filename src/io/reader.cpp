@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/bag_source.hpp"
 #include "io/folder_reader.hpp"
 #include "io/rawlog_reader.hpp"
 #include "io/writer.hpp"
@@ -45,10 +46,17 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
         if (HasRawlogExtension(path) || path.extension() == ".gz") {
             return OpenRawlog(path, options);
         }
-        throw DatasetError(path, "unknown dataset format: expected a .rawlog file or a folder (KITTI velodyne/, .pcd, .ply)");
+        if (path.extension() == ".mcap") return OpenBag(OpenMcapSource(path, options), path, options);
+        if (path.extension() == ".bag") return OpenBag(OpenRos1Source(path), path, options);
+        if (path.extension() == ".db3" && IsRosbag2Folder(path.parent_path())) {
+            return OpenBag(OpenDb3Source(path.parent_path()), path.parent_path(), options);
+        }
+        throw DatasetError(path, "unknown dataset format: expected a .rawlog, .mcap or .bag file or a folder (KITTI velodyne/, "
+                                 ".pcd, .ply, rosbag2 metadata.yaml + .db3)");
     }
     if (!fs::is_directory(status)) throw DatasetError(path, "neither a file nor a folder");
     if (IsKittiFolder(path)) return OpenKittiFolder(path, options);
+    if (IsRosbag2Folder(path)) return OpenBag(OpenDb3Source(path), path, options);
     if (fs::is_directory(path / "sequences")) {
         throw DatasetError(path, "this is a KITTI dataset root: give one sequence, e.g. " + (path / "sequences" / "00").string());
     }

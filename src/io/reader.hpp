@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/scan.hpp"
 
@@ -23,15 +24,31 @@ struct ReaderOptions {
     /// Rawlogs: a damaged or truncated file ends the sequence where reading stopped (DatasetInfo::truncated
     /// says why) instead of an error.
     bool allow_truncated = false;
+    /// ROS bags (io/bag_reader.hpp): the topics to read; empty: the only topic of a fitting type; "none":
+    /// no odometry prior / no reference poses.
+    std::string points_topic;     ///< sensor_msgs PointCloud2 or LaserScan
+    std::string odometry_topic;   ///< nav_msgs/Odometry: the odometry prior
+    std::string reference_topic;  ///< geometry_msgs/PoseStamped, nav_msgs/Path or nav_msgs/Odometry: reference poses
+    double reference_tolerance = 0.05;  ///< [s] ROS bags: a scan gets a reference pose stamped at most this far from it
+};
+
+/// A recording's topic (ROS bags), as `revisit info` lists them.
+struct TopicSummary {
+    std::string name;
+    std::string type;
+    std::size_t messages = 0;
+    double rate_hz = 0.0;  ///< [Hz] messages over the span of their receive times (0: fewer than 2)
+    std::string role;      ///< "points", "odometry", "reference", "static transforms" or "unused"
 };
 
 struct DatasetInfo {
-    std::string format;                    ///< "kitti", "pcd", "ply" or "rawlog"
+    std::string format;                    ///< "kitti", "pcd", "ply", "rawlog", "mcap", "rosbag2 sqlite3" or "rosbag1"
     std::filesystem::path path;            ///< what the user gave
     std::optional<std::size_t> num_scans;  ///< known up front for folders; rawlogs count while reading
     bool has_reference_poses = false;      ///< known up front (folders); rawlogs: after reading
     std::filesystem::path poses_file;      ///< where reference poses came from, if any
     std::string truncated;                 ///< with allow_truncated: why reading stopped early (empty: it did not)
+    std::vector<TopicSummary> topics;      ///< ROS bags: every topic and the role revisit gives it
 };
 
 /// What a reader dropped or skipped, so the user can be told once at the end.
@@ -65,7 +82,8 @@ bool IsSchemeDataset(const std::filesystem::path& path);
 std::string DatasetName(const std::filesystem::path& path);
 
 /// Picks the reader from the path: a registered scheme ("sim:PRESET"), a folder with velodyne/ (or sequences/NN + poses/NN.txt),
-/// a folder of .pcd or .ply files, or a .rawlog / .rawlog.gz file. Throws DatasetError.
+/// a folder of .pcd or .ply files, a .rawlog / .rawlog.gz file, or a ROS bag: .mcap, ROS 1 .bag, or a
+/// rosbag2 folder (metadata.yaml + .db3). Throws DatasetError.
 std::unique_ptr<Reader> OpenDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
 
 /// One line summary of ReadStats' drops and skips, empty when nothing was dropped.

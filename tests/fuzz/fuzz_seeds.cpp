@@ -12,6 +12,14 @@
 #include "io/writer.hpp"
 #include "config/config.hpp"
 #include "runfolder/run_files.hpp"
+#include "../io/mcap_test_writer.hpp"
+
+#include <sqlite3.h>
+#ifdef REVISIT_HAVE_ROSBAG
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/PointCloud2.h>
+#endif
 
 namespace {
 namespace fs = std::filesystem;
@@ -27,6 +35,80 @@ void Seed(const fs::path& dir, const std::string& name, int selector, const std:
     std::ofstream out(dir / name, std::ios::binary);
     if (selector >= 0) out.put(static_cast<char>(selector));
     out << bytes;
+}
+
+/// ROS bag seeds: two small clouds and a pose per format (MCAP plain, lz4 and cut; db3; ROS 1 bags).
+void BagSeeds(const fs::path& out, const fs::path& tmp) {
+    using namespace revisit::test;
+    std::string pose = Bytes().Raw(std::string("\0\1\0\0", 4)).data;
+    Bytes ps;
+    ps.origin = 4;
+    ps.Raw(pose).Put(std::int32_t(1), true).Put(std::uint32_t(5), true).CdrStr("map");
+    for (double v : {1.0, 2.0, 3.0, 0.0, 0.0, 0.0, 1.0}) ps.Put(v, true);
+    const std::string records = Schema(1, "sensor_msgs/msg/PointCloud2") + Schema(2, "geometry_msgs/msg/PoseStamped") +
+                                Channel(0, 1, "/points") + Channel(1, 2, "/gt") + Message(0, 1, CdrCloud(1, 5, {1, 2, 3, 4, 5, 6})) +
+                                Message(1, 1, ps.data) + Message(0, 2, CdrCloud(2, 5, {7, 8, 9}));
+    const std::string plain = Mcap(Chunk(records, ""));
+    Seed(out / "fuzz_mcap", "plain", -1, plain);
+    Seed(out / "fuzz_mcap", "lz4", -1, Mcap(Chunk(records, "lz4")));
+    Seed(out / "fuzz_mcap", "unchunked", -1, Mcap(records));
+    Seed(out / "fuzz_mcap", "cut", -1, plain.substr(0, plain.size() - 60));
+    // db3: Humble's tables with the same messages.
+    sqlite3* db = nullptr;
+    const fs::path db3 = tmp / "seed.db3";
+    fs::remove(db3);
+    if (sqlite3_open(db3.c_str(), &db) != SQLITE_OK) throw std::runtime_error("sqlite3_open");
+    const std::string cloud = CdrCloud(1, 5, {1, 2, 3});
+    std::string sql =
+        "CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL); INSERT INTO schema VALUES (3, 'humble');"
+        "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, serialization_format TEXT NOT NULL,"
+        " offered_qos_profiles TEXT NOT NULL);"
+        "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, data BLOB NOT NULL);"
+        "INSERT INTO topics VALUES (1, '/points', 'sensor_msgs/msg/PointCloud2', 'cdr', ''),"
+        " (2, '/gt', 'geometry_msgs/msg/PoseStamped', 'cdr', '');";
+    sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr);
+    sqlite3_stmt* insert = nullptr;
+    sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)", -1, &insert, nullptr);
+    for (const auto& [topic, blob] : {std::make_pair(1, cloud), std::make_pair(2, ps.data)}) {
+        sqlite3_bind_int(insert, 1, topic);
+        sqlite3_bind_int64(insert, 2, 1'000'000'005);
+        sqlite3_bind_blob(insert, 3, blob.data(), int(blob.size()), SQLITE_TRANSIENT);
+        sqlite3_step(insert);
+        sqlite3_reset(insert);
+    }
+    sqlite3_finalize(insert);
+    sqlite3_close(db);
+    Seed(out / "fuzz_db3", "humble", -1, ReadBytes(db3));
+#ifdef REVISIT_HAVE_ROSBAG
+    for (const auto& [name, compression] : {std::make_pair("plain", rosbag::compression::Uncompressed),
+                                            std::make_pair("bz2", rosbag::compression::BZ2),
+                                            std::make_pair("lz4", rosbag::compression::LZ4)}) {
+        const fs::path file = tmp / (std::string(name) + ".bag");
+        {
+            rosbag::Bag bag(file.string(), rosbag::bagmode::Write);
+            bag.setCompression(compression);
+            for (int i = 0; i < 2; ++i) {
+                sensor_msgs::PointCloud2 msg;
+                msg.header.stamp = ros::Time(10 + i, 0);
+                msg.header.frame_id = "lidar";
+                msg.height = 1, msg.width = 1, msg.point_step = 12, msg.row_step = 12;
+                for (const char* field : {"x", "y", "z"}) {
+                    sensor_msgs::PointField f;
+                    f.name = field, f.offset = 4 * std::uint32_t(msg.fields.size()), f.datatype = 7, f.count = 1;
+                    msg.fields.push_back(f);
+                }
+                msg.data.assign(12, std::uint8_t(i));
+                bag.write("/points", msg.header.stamp, msg);
+                nav_msgs::Odometry odom;
+                odom.header = msg.header;
+                odom.child_frame_id = "lidar";
+                odom.pose.pose.orientation.w = 1;
+                bag.write("/odom", msg.header.stamp, odom);
+            }
+        }
+        Seed(out / "fuzz_ros1", name, -1, ReadBytes(file));
+    }
+#endif
 }
 
 Scan MakeScan(int index) {
@@ -129,6 +211,7 @@ int main(int argc, char** argv) {
         const fs::path files[] = {run.run_info(), run.odometry_tum(), run.corrected_kitti(), run.local_maps_csv(),
                                   run.closures_csv(), run.timings_json(), run.root() / "closures" / "0000.json"};
         for (int i = 0; i < 7; ++i) Seed(out / "fuzz_run_folder", "file" + std::to_string(i), i, ReadBytes(files[i]));
+        BagSeeds(out, tmp);
     } catch (const std::exception& e) {
         std::cerr << "fuzz_seeds: " << e.what() << '\n';
         return 1;
