@@ -29,6 +29,8 @@ struct InputConfig {
     bool kitti_vertical_correction = false;  ///< KITTI HDL-64E: rotate points by 0.205 deg (configs/kitti.yaml)
     std::string sensor_label;                ///< rawlogs: only this sensor ("" = all)
     double laser_aperture_deg = 0.0;         ///< [deg] 2D lasers: replaces the file's aperture (0: keep)
+    double reference_end_tolerance = 0.0;    ///< [s] TUM poses: how far past their ends a scan takes the end pose (0: half their median spacing)
+    double reference_max_gap = 0.0;          ///< [s] TUM poses: longest gap interpolated across (0: 5 x their median spacing)
 };
 
 struct GraphNoiseConfig {

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/carmen_reader.hpp"
 #include "io/folder_reader.hpp"
 #include "io/rawlog_reader.hpp"
 #include "io/writer.hpp"
@@ -42,10 +43,11 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status)) throw DatasetError(path, "no such file or folder");
     if (fs::is_regular_file(status)) {
+        if (HasCarmenExtension(path)) return OpenCarmenLog(path, options);
         if (HasRawlogExtension(path) || path.extension() == ".gz") {
             return OpenRawlog(path, options);
         }
-        throw DatasetError(path, "unknown dataset format: expected a .rawlog file or a folder (KITTI velodyne/, .pcd, .ply)");
+        throw DatasetError(path, "unknown dataset format: expected a .rawlog file, a CARMEN log (.log, .clf, also .gz / .bz2) or a folder (KITTI velodyne/, .pcd, .ply)");
     }
     if (!fs::is_directory(status)) throw DatasetError(path, "neither a file nor a folder");
     if (IsKittiFolder(path)) return OpenKittiFolder(path, options);
