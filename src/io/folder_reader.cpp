@@ -166,6 +166,13 @@ std::unique_ptr<Reader> OpenKittiFolder(const fs::path& path, const ReaderOption
     return reader;
 }
 
+std::unique_ptr<Reader> OpenStampedScanFiles(DatasetInfo info, std::vector<fs::path> files, CloudLoader loader, std::string label,
+                                             std::vector<double> times, Trajectory reference, const ReaderOptions& options) {
+    auto reader = std::make_unique<FolderReader>(std::move(info), std::move(files), loader, std::move(label), options);
+    reader->SetPosesAndTimes(std::move(reference), std::move(times), {}, options.pose_pairing);
+    return reader;
+}
+
 std::unique_ptr<Reader> OpenCloudFolder(const fs::path& path, const ReaderOptions& options) {
     auto pcd = FilesWithExtension(path, ".pcd");
     auto ply = FilesWithExtension(path, ".ply");

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "io/carmen_reader.hpp"
 #include "io/folder_reader.hpp"
+#include "io/public_layouts.hpp"
 #include "io/rawlog_reader.hpp"
 #include "io/writer.hpp"
 
@@ -50,6 +51,7 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
         throw DatasetError(path, "unknown dataset format: expected a .rawlog file, a CARMEN log (.log, .clf, also .gz / .bz2) or a folder (KITTI velodyne/, .pcd, .ply)");
     }
     if (!fs::is_directory(status)) throw DatasetError(path, "neither a file nor a folder");
+    if (IsMulRanFolder(path)) return OpenMulRan(path, options);
     if (IsKittiFolder(path)) return OpenKittiFolder(path, options);
     if (fs::is_directory(path / "sequences")) {
         throw DatasetError(path, "this is a KITTI dataset root: give one sequence, e.g. " + (path / "sequences" / "00").string());
