@@ -19,6 +19,12 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
           "ROS bags: PoseStamped, Path or Odometry topic of reference poses (empty: the only PoseStamped/Path; none: none)");
     s.Add("input.laser_aperture_deg", &c.input.laser_aperture_deg, "deg",
           "2D lasers: field of view replacing the file's (0: the file's; radish intel.rawlog needs 180)", Range{0, 360});
+    s.Add("input.reference_end_tolerance", &c.input.reference_end_tolerance, "s",
+          "TUM reference / --poses files pair with scans by time: a scan this far past their first or last pose takes it (0: half their median spacing)",
+          Range{0, 1e6});
+    s.Add("input.reference_max_gap", &c.input.reference_max_gap, "s",
+          "TUM reference / --poses files: longest gap between two poses interpolated across; a scan in a longer one has no pose (0: 5 x their median spacing)",
+          Range{0, 1e6});
     auto& o = c.odometry;
     s.Add("odometry.max_range", &o.max_range, "m", "points beyond are dropped; map radius (KISS-ICP paper-era: 100)", Range{1, 1000});
     s.Add("odometry.min_range", &o.min_range, "m", "points closer are dropped (KISS-ICP paper-era: 5)", Range{0, 100});
@@ -254,6 +260,8 @@ ReaderOptions MakeReaderOptions(const InputConfig& input) {
     options.points_topic = input.topic;
     options.odometry_topic = input.odometry_topic;
     options.reference_topic = input.reference_topic;
+    options.pose_pairing.end_tolerance = input.reference_end_tolerance;
+    options.pose_pairing.max_gap = input.reference_max_gap;
     return options;
 }
 

@@ -34,6 +34,8 @@ struct InputConfig {
     std::string topic;
     std::string odometry_topic;
     std::string reference_topic;
+    double reference_end_tolerance = 0.0;    ///< [s] TUM poses: how far past their ends a scan takes the end pose (0: half their median spacing)
+    double reference_max_gap = 0.0;          ///< [s] TUM poses: longest gap interpolated across (0: 5 x their median spacing)
 };
 
 struct GraphNoiseConfig {

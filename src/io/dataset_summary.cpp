@@ -70,6 +70,7 @@ void PrintSummary(std::ostream& out, const DatasetSummary& s) {
     out << "points per scan:  min " << s.points_min << ", median " << s.points_median << ", max " << s.points_max << '\n';
     out << "time span:        " << (s.time_end - s.time_start) << " s";
     if (s.num_scans > 1) out << " (" << (s.num_scans - 1) / std::max(s.time_end - s.time_start, 1e-9) << " Hz)";
+    if (!s.info.timing.empty()) out << "; " << s.info.timing;
     out << '\n';
     out << "reference poses:  " << (s.scans_with_reference > 0 ? "yes (" + std::to_string(s.scans_with_reference) + " scans)" : "no");
     if (!s.info.poses_file.empty()) out << " from " << s.info.poses_file.string();

@@ -36,15 +36,27 @@ class FolderReader final : public Reader {
         info_.num_scans = files_.size();
     }
 
-    /// Reference poses (one per file) and times; throws when the counts disagree.
-    void SetPosesAndTimes(Trajectory reference, std::vector<double> times, const fs::path& times_file) {
-        if (!reference.empty() && reference.size() != files_.size()) {
-            throw DatasetError(info_.poses_file, std::to_string(reference.size()) + " poses for " +
-                                                     std::to_string(files_.size()) + " scans");
-        }
+    /// Reference poses and times. KITTI poses (no times) pair by index: one per file. TUM poses pair
+    /// by time stamp with the folder's times.txt, interpolated (io/timed_poses.hpp); without
+    /// times.txt they pair by index and give the scans their times.
+    void SetPosesAndTimes(Trajectory reference, std::vector<double> times, const fs::path& times_file,
+                          const TimePairingConfig& pairing) {
         if (!times.empty() && times.size() != files_.size()) {
             throw DatasetError(times_file, std::to_string(times.size()) + " times for " +
                                                std::to_string(files_.size()) + " scans");
+        }
+        if (reference.has_timestamps() && !times.empty()) {
+            info_.has_reference_poses = true;
+            timed_reference_.emplace(std::move(reference), pairing);
+            times_ = std::move(times);
+            return;
+        }
+        if (!reference.empty() && reference.size() != files_.size()) {
+            throw DatasetError(info_.poses_file, std::to_string(reference.size()) + " poses for " +
+                                                     std::to_string(files_.size()) + " scans" +
+                                                     (reference.has_timestamps()
+                                                          ? " (TUM poses pair by time stamp, but the folder has no times.txt)"
+                                                          : " (KITTI poses pair with scans by index)"));
         }
         if (times.empty() && reference.has_timestamps()) times = reference.timestamps;
         info_.has_reference_poses = !reference.empty();
@@ -65,6 +77,7 @@ class FolderReader final : public Reader {
         scan.intensities = std::move(cloud.intensities);
         scan.point_times = std::move(cloud.point_times);
         if (!reference_.empty()) scan.T_world_sensor = reference_[i];
+        if (timed_reference_) scan.T_world_sensor = timed_reference_->At(scan.timestamp);
         stats_.scans++;
         stats_.points += scan.points.size();
         stats_.non_finite_points += cloud.non_finite;
@@ -80,6 +93,7 @@ class FolderReader final : public Reader {
     std::string label_;
     bool vertical_correction_;
     Poses reference_;
+    std::optional<TimedPoses> timed_reference_;
     std::vector<double> times_;
     std::size_t next_ = 0;
 };
@@ -148,7 +162,14 @@ std::unique_ptr<Reader> OpenKittiFolder(const fs::path& path, const ReaderOption
     auto reader = std::make_unique<FolderReader>(info, std::move(files), &LoadKittiBin, "VELODYNE", options);
     reader->SetPosesAndTimes(std::move(reference), fs::is_regular_file(times_file) ? ReadTimes(times_file)
                                                                                     : std::vector<double>{},
-                             times_file);
+                             times_file, options.pose_pairing);
+    return reader;
+}
+
+std::unique_ptr<Reader> OpenStampedScanFiles(DatasetInfo info, std::vector<fs::path> files, CloudLoader loader, std::string label,
+                                             std::vector<double> times, Trajectory reference, const ReaderOptions& options) {
+    auto reader = std::make_unique<FolderReader>(std::move(info), std::move(files), loader, std::move(label), options);
+    reader->SetPosesAndTimes(std::move(reference), std::move(times), {}, options.pose_pairing);
     return reader;
 }
 
@@ -170,7 +191,7 @@ std::unique_ptr<Reader> OpenCloudFolder(const fs::path& path, const ReaderOption
                                                  is_pcd ? &LoadPcd : &LoadPly, "LIDAR", options);
     reader->SetPosesAndTimes(info.poses_file.empty() ? Trajectory{} : ReadPoses(info.poses_file),
                              fs::is_regular_file(times_file) ? ReadTimes(times_file) : std::vector<double>{},
-                             times_file);
+                             times_file, options.pose_pairing);
     return reader;
 }
 

@@ -4,7 +4,9 @@
 
 #include "core/error.hpp"
 #include "io/bag_source.hpp"
+#include "io/carmen_reader.hpp"
 #include "io/folder_reader.hpp"
+#include "io/public_layouts.hpp"
 #include "io/rawlog_reader.hpp"
 #include "io/writer.hpp"
 
@@ -43,6 +45,7 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status)) throw DatasetError(path, "no such file or folder");
     if (fs::is_regular_file(status)) {
+        if (HasCarmenExtension(path)) return OpenCarmenLog(path, options);
         if (HasRawlogExtension(path) || path.extension() == ".gz") {
             return OpenRawlog(path, options);
         }
@@ -51,10 +54,11 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
         if (path.extension() == ".db3" && IsRosbag2Folder(path.parent_path())) {
             return OpenBag(OpenDb3Source(path.parent_path()), path.parent_path(), options);
         }
-        throw DatasetError(path, "unknown dataset format: expected a .rawlog, .mcap or .bag file or a folder (KITTI velodyne/, "
+        throw DatasetError(path, "unknown dataset format: expected a .rawlog, .mcap or .bag file, a CARMEN log (.log, .clf, also .gz / .bz2) or a folder (KITTI velodyne/, "
                                  ".pcd, .ply, rosbag2 metadata.yaml + .db3)");
     }
     if (!fs::is_directory(status)) throw DatasetError(path, "neither a file nor a folder");
+    if (IsMulRanFolder(path)) return OpenMulRan(path, options);
     if (IsKittiFolder(path)) return OpenKittiFolder(path, options);
     if (IsRosbag2Folder(path)) return OpenBag(OpenDb3Source(path), path, options);
     if (fs::is_directory(path / "sequences")) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/scan.hpp"
+#include "io/timed_poses.hpp"
 
 namespace revisit {
 
@@ -17,6 +18,8 @@ struct ReaderOptions {
     std::string sensor_label;                ///< rawlogs: keep only this sensor label (empty: all)
     bool kitti_vertical_correction = false;  ///< rotate KITTI points by 0.205 deg about the axis normal to their azimuth
     std::filesystem::path poses_file;        ///< reference poses (KITTI 3x4 or TUM) overriding the dataset's own
+    /// TUM reference poses pair with scans by time stamp (KITTI ones by index): tolerance and gaps.
+    TimePairingConfig pose_pairing;
     /// 2D laser scans: field of view [rad] to use instead of the file's `aperture` (0: the file's).
     /// Some converted logs store a wrong aperture, e.g. the radish intel.rawlog says 90 deg for its
     /// 180-beam, 180-degree SICK scans, which bends every scan.
@@ -42,13 +45,14 @@ struct TopicSummary {
 };
 
 struct DatasetInfo {
-    std::string format;                    ///< "kitti", "pcd", "ply", "rawlog", "mcap", "rosbag2 sqlite3" or "rosbag1"
+    std::string format;                    ///< "kitti", "pcd", "ply", "rawlog", "carmen", "mcap", "rosbag2 sqlite3" or "rosbag1"
     std::filesystem::path path;            ///< what the user gave
     std::optional<std::size_t> num_scans;  ///< known up front for folders; rawlogs count while reading
     bool has_reference_poses = false;      ///< known up front (folders); rawlogs: after reading
     std::filesystem::path poses_file;      ///< where reference poses came from, if any
     std::string truncated;                 ///< with allow_truncated: why reading stopped early (empty: it did not)
     std::vector<TopicSummary> topics;      ///< ROS bags: every topic and the role revisit gives it
+    std::string timing;                    ///< how the scans were stamped when the file has no times (empty: the file's)
 };
 
 /// What a reader dropped or skipped, so the user can be told once at the end.
@@ -82,8 +86,8 @@ bool IsSchemeDataset(const std::filesystem::path& path);
 std::string DatasetName(const std::filesystem::path& path);
 
 /// Picks the reader from the path: a registered scheme ("sim:PRESET"), a folder with velodyne/ (or sequences/NN + poses/NN.txt),
-/// a folder of .pcd or .ply files, a .rawlog / .rawlog.gz file, or a ROS bag: .mcap, ROS 1 .bag, or a
-/// rosbag2 folder (metadata.yaml + .db3). Throws DatasetError.
+/// a folder of .pcd or .ply files, a .rawlog / .rawlog.gz file, a CARMEN log (.log / .clf, plain, .gz
+/// or .bz2), or a ROS bag: .mcap, ROS 1 .bag, or a rosbag2 folder (metadata.yaml + .db3). Throws DatasetError.
 std::unique_ptr<Reader> OpenDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
 
 /// One line summary of ReadStats' drops and skips, empty when nothing was dropped.

@@ -158,10 +158,32 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
     WriteFileAtomically(run.root() / "comparison.md", [&e](std::ostream& out) { WriteComparisonTable(out, e.methods); });
 }
 
+/// The reference covers some scans only: APE, RPE and the KITTI errors on those, every other metric
+/// left out (each needs the reference pose of every scan of the maps it judges).
+RunEvaluation EvaluatePartialReference(const RunFolder& run, const RunState& state, std::ostream& log) {
+    Poses odometry, corrected;
+    for (const std::size_t position : state.reference_scans) {
+        odometry.push_back(state.odometry.at(position));
+        corrected.push_back(state.corrected.at(position));
+    }
+    RunEvaluation e;
+    e.closure_metrics = false;
+    e.reference_scans = state.reference_scans.size();
+    e.odometry = EvaluateTrajectory(odometry, state.reference);
+    e.corrected = EvaluateTrajectory(corrected, state.reference);
+    log << "note: the reference covers " << e.reference_scans << " of " << state.odometry.size()
+        << " scans: trajectory metrics on those only; the closure metrics need a reference pose for every scan\n";
+    const json metrics = {{"reference", {{"scans", state.odometry.size()}, {"paired_scans", e.reference_scans}}},
+                          {"trajectory", {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}}}};
+    WriteFileAtomically(run.metrics_json(), [&metrics](std::ostream& out) { out << std::setw(2) << metrics << '\n'; });
+    return e;
+}
+
 }  // namespace
 
 std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
                                          const PipelineConfig& config, std::ostream& log) {
+    if (state.has_partial_reference() && state.reference_scans.size() >= 2) return EvaluatePartialReference(run, state, log);
     if (!state.has_reference() || state.odometry.size() < 2) return std::nullopt;
     const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth,
                                                 state.dataset + "#" + std::to_string(options.from) + "#" +
@@ -175,6 +197,7 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     const auto& gt = pass.ground_truth;
 
     RunEvaluation e;
+    e.reference_scans = state.reference.size();
     e.gt_segments = gt.segments.size();
     e.gt_closing_segment_pairs = gt.segment_pairs.size();
     e.gt_scan_pairs = gt.scan_pairs.size();

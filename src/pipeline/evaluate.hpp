@@ -22,6 +22,10 @@ struct TrajectoryEvaluation {
 };
 
 struct RunEvaluation {
+    /// False when the reference covers only some scans (RunState::reference_scans): then only the
+    /// trajectory metrics are computed, on those scans; the closure metrics need every scan's pose.
+    bool closure_metrics = true;
+    std::size_t reference_scans = 0;  ///< scans with a reference pose (all of them when closure_metrics)
     std::size_t gt_segments = 0;
     std::size_t gt_closing_segment_pairs = 0;
     std::size_t gt_scan_pairs = 0;
@@ -38,7 +42,8 @@ struct RunEvaluation {
     TrajectoryEvaluation corrected;
 };
 
-/// Everything above for a run with reference poses (nullopt without): re-reads the dataset once
+/// Everything above for a run with reference poses for every scan; the trajectory metrics alone
+/// when some scans have none (nullopt without any): re-reads the dataset once
 /// (only the scans the ground truth and ScanContext need), writes metrics.json, pr_curve_<method>.csv
 /// and comparison.md into the run folder.
 std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,

@@ -26,6 +26,7 @@
 #include "pipeline/progress.hpp"
 #include "runfolder/run_files.hpp"
 #include "pipeline/odometry_stages.hpp"
+#include "pipeline/pose_file_source.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
@@ -60,45 +61,6 @@ const char* PoseSourceName(PoseSource source) {
         default: return "file";
     }
 }
-
-/// Reference poses per scan from a ground-truth file: by time stamp for TUM, by index for KITTI.
-class ReferenceSource {
-  public:
-    explicit ReferenceSource(const fs::path& file) : file_(file) {
-        if (!file.empty()) trajectory_ = ReadPoses(file);
-    }
-    bool active() const { return !file_.empty(); }
-    /// KITTI files pair by index: their pose count must be the dataset's scan count (when known up front).
-    void CheckCount(std::optional<std::size_t> num_scans) const {
-        if (active() && !trajectory_.has_timestamps() && num_scans && trajectory_.size() != *num_scans) {
-            throw DatasetError(file_, "--gt has " + std::to_string(trajectory_.size()) + " poses for " +
-                                          std::to_string(*num_scans) + " scans (KITTI poses pair with scans by index)");
-        }
-    }
-    /// The scan's reference pose; a scan the file does not cover is an error naming it, never a
-    /// silently dropped evaluation.
-    Eigen::Isometry3d At(std::size_t index, double timestamp) const {
-        if (trajectory_.has_timestamps()) {
-            const long i = AssociateByTime(trajectory_.timestamps, {timestamp}, kMaxTimeDifference).front();
-            if (i < 0) {
-                throw DatasetError(file_, "--gt (TUM, matched by time stamp) has no pose within " +
-                                              std::to_string(kMaxTimeDifference) + " s of scan " + std::to_string(index) +
-                                              " (t = " + std::to_string(timestamp) + " s)");
-            }
-            return trajectory_.poses[i];
-        }
-        if (index >= trajectory_.size()) {
-            throw DatasetError(file_, "--gt has " + std::to_string(trajectory_.size()) + " poses; scan " +
-                                          std::to_string(index) + " has none (KITTI poses pair with scans by index)");
-        }
-        return trajectory_.poses[index];
-    }
-
-  private:
-    static constexpr double kMaxTimeDifference = 0.02;  ///< [s] half a 10 Hz scan period
-    fs::path file_;
-    Trajectory trajectory_;
-};
 
 std::vector<Eigen::Vector3f> ToFloat(const std::vector<Eigen::Vector3d>& points) {
     std::vector<Eigen::Vector3f> out(points.size());
@@ -162,8 +124,10 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     // Open every input before creating the run folder: bad input fails without leaving anything behind.
     // Read ahead on a thread of its own (two scans, same order): reading overlaps the processing.
     const std::unique_ptr<Reader> reader = std::make_unique<PrefetchReader>(OpenDataset(options.dataset, reader_options), 2);
-    const Trajectory pose_file = options.poses == PoseSource::kFile ? ReadPoses(options.poses_file) : Trajectory{};
-    const ReferenceSource ground_truth(options.gt_file);
+    const PoseFileSource pose_file(options.poses == PoseSource::kFile ? options.poses_file : fs::path(), "--poses",
+                                   reader_options.pose_pairing);
+    const PoseFileSource ground_truth(options.gt_file, "--gt", reader_options.pose_pairing);
+    pose_file.CheckCount(reader->Info().num_scans);
     ground_truth.CheckCount(reader->Info().num_scans);
     CheckScanRange(options, reader->Info().num_scans);
     const RunFolder run = RunFolder::Create(options.out, options.force);
@@ -197,7 +161,11 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     }
     Progress progress(log, Progress::DetectMode(options.quiet), total);
     InstallInterruptHandler();
-    bool reference_complete = true;
+    // Reference poses as paired, per scan processed: a scan without one is left out of the metrics.
+    Poses reference;
+    std::vector<std::size_t> reference_scans;
+    UnpairedScans unpaired;
+    bool read_to_end = false;  // the reader ran out (not --to, not Ctrl-C): a KITTI file's count can be checked
     std::map<std::string, StageTimer> timings;
     const auto time = [](StageTimer& timer, Clock::time_point start) {
         timer.total_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -218,6 +186,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         std::optional<Scan> scan;
         while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {}
         time(read_timer, read_start);
+        if (!scan) read_to_end = !InterruptRequested();
         if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {
             flow.stop();
             return item;
@@ -256,19 +225,18 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
             posed.T_world_sensor = *scan.T_world_sensor;
             posed.points = std::move(scan.points);
         } else {
-            if (scan.index >= pose_file.size()) {
-                throw DatasetError(options.poses_file, "has " + std::to_string(pose_file.size()) + " poses; scan " +
-                                                           std::to_string(scan.index) + " has none");
-            }
-            posed.T_world_sensor = pose_file.poses[scan.index];
+            posed.T_world_sensor = pose_file.Required(scan.index, scan.timestamp);
             posed.points = std::move(scan.points);
         }
         state.timestamps.push_back(scan.timestamp);
         state.odometry.push_back(posed.T_world_sensor);
-        const auto reference = ground_truth.active() ? std::optional(ground_truth.At(scan.index, scan.timestamp))
-                                                     : scan.T_world_sensor;
-        if (reference && reference_complete) state.reference.push_back(*reference);
-        else reference_complete = false;
+        const auto paired = ground_truth.active() ? ground_truth.At(scan.index, scan.timestamp) : scan.T_world_sensor;
+        if (paired) {
+            reference.push_back(*paired);
+            reference_scans.push_back(posed.position);
+        } else if (ground_truth.active() || reader->Info().has_reference_poses) {
+            unpaired.Add(scan.index, scan.timestamp);
+        }
         return posed;
     };
     const auto close_maps = [&](PosedScan posed) {
@@ -300,7 +268,17 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     if (const auto& drift = pipeline.DriftCalibration()) state.setting_updates.push_back(*drift);
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
                                                std::to_string(accepted));
-    if (!reference_complete) state.reference.clear();
+    if (read_to_end) {
+        // Rawlogs: their length is known once read.
+        pose_file.CheckCount(reader->Stats().scans);
+        ground_truth.CheckCount(reader->Stats().scans);
+    }
+    if (reference.size() == state.odometry.size()) {
+        state.reference = std::move(reference);
+    } else if (!reference.empty()) {
+        state.reference = std::move(reference);
+        state.reference_scans = std::move(reference_scans);
+    }
 
     state.maps = pipeline.maps();
     state.closures = pipeline.closures();
@@ -322,6 +300,10 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         log << "warning: the odometry fell back to the motion prediction on " << state.odometry_fallbacks.size() << " of "
             << state.odometry.size() << " scans" << (state.odometry_fallbacks.size() > kShownFallbacks ? " (the first shown above)" : "")
             << "; run.json lists them\n";
+    }
+    if (unpaired.count > 0) {
+        log << "note: " << (ground_truth.active() ? options.gt_file.string() + ": " : std::string()) << unpaired.Describe()
+            << (ground_truth.by_time() ? "; the reference: " + ground_truth.DescribeSpan() : std::string()) << '\n';
     }
     const std::string drops = DescribeDrops(reader->Stats());
     if (!drops.empty()) log << "note: " << drops << '\n';

@@ -93,6 +93,14 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
         out << "\n  (no reference poses: no metrics; give --gt FILE to evaluate)\n";
         return;
     }
+    if (!evaluation->closure_metrics) {
+        out << "\n  reference poses for " << evaluation->reference_scans << " of " << state.odometry.size()
+            << " scans: trajectory metrics on those only (no closure metrics)\n";
+        out << "\n  APE translation RMSE: "
+            << DescribeApeChange(evaluation->odometry.ape.errors.translation_stats.rmse, evaluation->corrected.ape.errors.translation_stats.rmse)
+            << '\n';
+        return;
+    }
     out << "\n  ground truth: " << evaluation->gt_scan_pairs << " scan pairs in " << evaluation->gt_closing_segment_pairs
         << " closing segment pairs\n\n";
     out << "  method            precision  recall     F1   R@100%P   APE before [m]  APE after [m]\n";

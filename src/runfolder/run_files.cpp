@@ -217,6 +217,12 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
     WriteKittiPoses(run.corrected_kitti(), state.corrected);
     WriteTumPoses(run.corrected_tum(), WithTimes(state, state.corrected));
     if (state.has_reference()) WriteTumPoses(run.reference_tum(), WithTimes(state, state.reference));
+    if (state.has_partial_reference()) {
+        Trajectory partial;
+        partial.poses = state.reference;
+        for (const std::size_t position : state.reference_scans) partial.timestamps.push_back(state.timestamps.at(position));
+        WriteTumPoses(run.reference_tum(), partial);  // run.json's reference_scans says which scans these are
+    }
     WriteMaps(run, state);
     WriteClosures(run, state);
     WriteComparisons(run, state);
@@ -232,6 +238,7 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
                                {"maps", state.maps.size()}, {"closures", state.closures.size()},
                                {"accepted_closures", state.NumAccepted()}, {"wall_seconds", state.wall_seconds},
                                {"peak_rss_kb", state.peak_rss_kb}, {"odometry_fallbacks", state.odometry_fallbacks},
+                               {"reference_scans", state.reference_scans},
                                {"setting_updates", SettingUpdatesJson(state.setting_updates)},
                                {"revisit_version", "0.1.0"}});
 }
@@ -248,6 +255,7 @@ RunState ReadRunState(const RunFolder& run) {
         state.wall_seconds = info.value("wall_seconds", 0.0);
         state.peak_rss_kb = Count(info, "peak_rss_kb", run.run_info());
         state.odometry_fallbacks = info.value("odometry_fallbacks", std::vector<std::size_t>{});
+        state.reference_scans = info.value("reference_scans", std::vector<std::size_t>{});
         for (const auto& u : info.value("setting_updates", json::array())) {
             state.setting_updates.push_back({u.at("scan").get<std::size_t>(), u.at("key").get<std::string>(), u.at("from").get<double>(),
                                              u.at("to").get<double>(), u.at("reason").get<std::string>()});
@@ -260,6 +268,20 @@ RunState ReadRunState(const RunFolder& run) {
     state.odometry = odometry.poses;
     state.corrected = ReadKittiPoses(run.corrected_kitti()).poses;
     if (fs::exists(run.reference_tum())) state.reference = ReadTumPoses(run.reference_tum()).poses;
+    if (!state.reference_scans.empty()) {
+        // A partial reference: one pose per listed scan, the scans in order and within the run.
+        const auto& scans = state.reference_scans;
+        if (scans.size() != state.reference.size()) {
+            throw DatasetError(run.run_info(), "reference_scans lists " + std::to_string(scans.size()) + " scans, " +
+                                                   run.reference_tum().string() + " has " + std::to_string(state.reference.size()) + " poses");
+        }
+        for (std::size_t k = 0; k < scans.size(); ++k) {
+            if (scans[k] >= state.odometry.size() || (k > 0 && scans[k] <= scans[k - 1])) {
+                throw DatasetError(run.run_info(), "reference_scans: entry " + std::to_string(k) + " (" + std::to_string(scans[k]) +
+                                                       ") is not an increasing scan position below " + std::to_string(state.odometry.size()));
+            }
+        }
+    }
     const auto maps = CsvTable::Read(run.local_maps_csv());
     for (std::size_t i = 0; i < maps.size(); ++i) {
         MapRecordSummary m;

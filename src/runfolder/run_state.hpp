@@ -67,7 +67,11 @@ struct RunState {
     std::vector<double> timestamps;
     Poses odometry;            ///< per scan: the poses the maps were built from
     Poses corrected;           ///< per scan, after the pose graph
-    Poses reference;           ///< per scan, or empty when the dataset has no reference
+    Poses reference;           ///< per scan, or empty when the dataset has no reference; see reference_scans
+    /// When the reference covers only some scans (a TUM reference paired by time: scans outside its
+    /// span or in a gap have none): the positions of those it covers, sorted, one per `reference`
+    /// pose. Empty when it covers every scan (or none).
+    std::vector<std::size_t> reference_scans;
     std::vector<int> map_of_scan;
     /// Scans (positions in `odometry`) whose pose is only the motion prediction: the odometry found the
     /// scan degenerate or its registration diverged (issue 14: divergence is reported, never hidden).
@@ -80,7 +84,10 @@ struct RunState {
     double wall_seconds = 0.0;
     std::size_t peak_rss_kb = 0;
 
-    bool has_reference() const { return !reference.empty() && reference.size() == odometry.size(); }
+    /// A reference pose for every scan: what the closure metrics, the report and the sessions need.
+    bool has_reference() const { return !reference.empty() && reference.size() == odometry.size() && reference_scans.empty(); }
+    /// A reference for some scans only (reference_scans): the trajectory metrics use those.
+    bool has_partial_reference() const { return !reference_scans.empty() && reference_scans.size() == reference.size(); }
     /// Closures in the final pose graph (the detector's and the proximity pass's).
     std::size_t NumAccepted() const;
 };

@@ -1,5 +1,8 @@
 /// Writes the seed corpus of every fuzz target with the project's own writers (small files):
 /// `fuzz_seeds DIR` fills DIR/<target>/. Targets whose first byte selects a reader get it prefixed.
+#include <bzlib.h>
+#include <zlib.h>
+
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -171,6 +174,34 @@ int main(int argc, char** argv) {
             for (int i = 0; i < 2; ++i) writer->Write(MakeScan(i));
             writer->Finish();
             Seed(out / "fuzz_rawlog", name, -1, ReadBytes(tmp / name));
+        }
+        // CARMEN logs: FLASER/RLASER/ODOM/PARAM lines, a ROBOTLASER1 line; plain, gzip and bzip2.
+        const std::string carmen =
+            "PARAM robot_front_laser_max 10.0 nohost 0\nODOM 0 0 0 0 0 0 100.0 host 100.0\n"
+            "FLASER 5 1.0 2.0 10.0 0.01 4.0 0.5 0.25 0.1 0.5 0.25 0.1 100.5 host 100.5\n"
+            "RLASER 3 1 1 1 0 0 3.14 0 0 0 100.6 host 100.6\n"
+            "FLASER 5 3.0 3.0 3.0 3.0 3.0 1.5 0.25 0.2 1.5 0.25 0.2 101.0 host 101.0\n";
+        const std::string robot_laser =
+            "ROBOTLASER1 0 -0.785398 1.570796 0.785398 5.0 0.1 0 3 1.0 5.0 2.0 2 7 8 1.2 0 0 1 0 0 0 0 0 0 0 55.5 host 55.5\n";
+        Seed(out / "fuzz_carmen", "flaser", 0, carmen);
+        Seed(out / "fuzz_carmen", "robotlaser", 3, robot_laser);
+        {
+            std::string gz(compressBound(carmen.size()) + 64, '\0');
+            z_stream z{};
+            deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY);
+            z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(carmen.data()));
+            z.avail_in = static_cast<uInt>(carmen.size());
+            z.next_out = reinterpret_cast<Bytef*>(gz.data());
+            z.avail_out = static_cast<uInt>(gz.size());
+            deflate(&z, Z_FINISH);
+            gz.resize(z.total_out);
+            deflateEnd(&z);
+            Seed(out / "fuzz_carmen", "gzip", 0, gz);
+            std::string bz(carmen.size() + 1024, '\0');
+            unsigned length = static_cast<unsigned>(bz.size());
+            BZ2_bzBuffToBuffCompress(bz.data(), &length, const_cast<char*>(carmen.data()), static_cast<unsigned>(carmen.size()), 9, 0, 0);
+            bz.resize(length);
+            Seed(out / "fuzz_carmen", "bzip2", 0, bz);
         }
         // database.bin with one map.
         ClosureDetector detector;
