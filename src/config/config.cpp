@@ -49,6 +49,10 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
           "share of a scan's points within a voxel of the map after ICP; fewer: the frame keeps the prediction (garbage, faults)", Range{0, 1});
     s.Add("odometry.turn_hypothesis", &o.turn_hypothesis, "",
           "when the predicted turn moves points by more than a voxel, also register without it and keep the better (swaying sensors)");
+    s.Add("odometry.correlative_start", &o.correlative_start, "",
+          "2D lasers: start the ICP from a correlative scan match (every frame without wheel odometry; with it, frames whose ICP failed)");
+    s.Add("odometry.correlative_window", &o.correlative_window, "m", "translations the correlative match searches each way", Range{0.01, 100});
+    s.Add("odometry.correlative_angular_window_deg", &o.correlative_angular_window_deg, "deg", "rotations the correlative match searches each way", Range{0, 180});
     s.Add("odometry.deskew", &o.deskew, "", "constant-velocity motion compensation (paper-era: off)");
     s.Add("odometry.azimuth_clockwise", &o.azimuth_clockwise, "", "deskew without point times: sweep direction (KITTI: clockwise)");
     s.Add("odometry.planar", &o.planar, "", "estimate x, y, yaw only (2D lasers)");

@@ -10,6 +10,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include "core/error.hpp"
+#include "odometry/correlative_matcher.hpp"
 #include "odometry/preprocess.hpp"
 #include "odometry/registration.hpp"
 
@@ -136,6 +137,94 @@ const VoxelHashMap& LidarOdometry::LocalMap() {
     return map_;
 }
 
+Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
+                                                  const Eigen::Isometry3d& delta, double& resolution) {
+    CorrelativeMatchConfig match_config;
+    match_config.resolution = config_.VoxelSize();
+    match_config.linear_window = config_.correlative_window;
+    // Key frames turn one way and then back: the rotations searched span both the predicted turn and
+    // none, and the window beyond either.
+    const double predicted_turn = std::atan2(delta.linear()(1, 0), delta.linear()(0, 0));
+    match_config.angular_window = config_.correlative_angular_window_deg * M_PI / 180.0 + 0.5 * std::abs(predicted_turn);
+    Eigen::Isometry3d half_turn = Eigen::Isometry3d::Identity();
+    half_turn.translation() = delta.translation();
+    half_turn.linear() = Eigen::AngleAxisd(0.5 * predicted_turn, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Isometry3d T_centre = ProjectToPlanar(Orthonormalized(last_pose * half_turn));
+    // The map within reach of any searched pose, one point per voxel.
+    reference_.clear();
+    map_.PointsNear(T_centre.translation(), config_.max_range + config_.correlative_window, reference_);
+    const CorrelativeMatch match = MatchCorrelative2D(reference_, source, T_centre, match_config);
+    stats_.correlative_used = match.valid;
+    stats_.correlative_score = match.score;
+    resolution = match.valid ? match.resolution : 0.0;
+    return match.valid ? match.T_world_sensor : ProjectToPlanar(Orthonormalized(last_pose * delta));
+}
+
+std::string LidarOdometry::RegisterFrom(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_start,
+                                        const Eigen::Isometry3d& delta, const Eigen::Isometry3d& last_pose, bool turn_hypothesis,
+                                        double start_resolution, Eigen::Isometry3d& T_new) {
+    const double voxel = config_.VoxelSize();
+    // From a correlative match the start is off by about its cell, whatever the motion was.
+    const double sigma = std::max(threshold_.Sigma(), start_resolution);
+    IcpParams params;
+    params.max_correspondence_distance = 3.0 * sigma;
+    params.kernel = config_.kernel == IcpKernel::kPaper ? sigma / 3.0 : sigma;
+    params.max_iterations = config_.max_iterations;
+    params.convergence = config_.convergence;
+    params.anderson_depth = config_.anderson_depth;
+    params.min_correspondences = config_.min_correspondences;
+    params.planar = config_.planar;
+    params.point_to_plane = config_.residual == IcpResidual::kPointToPlane;
+    IcpResult icp = RegisterPointsToMap(source, map_, T_start, params);
+    // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
+    // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
+    const std::size_t stride = std::max<std::size_t>(1, source.size() / kAgreementSamples);
+    std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel, stride) : 0;
+    // A swaying sensor (handheld, legged) reverses its turns between scans, so constant velocity
+    // can predict the rotation wrongly by more than ICP's basin. When the predicted turn moves
+    // points by more than a voxel, also register from the translation-only prediction and keep
+    // the result more points agree with (within one voxel of the map). Only for extrapolated
+    // motion: a wheel-odometry prior measures the turn.
+    Eigen::Isometry3d delta_translation = delta;
+    delta_translation.linear().setIdentity();
+    if (turn_hypothesis && config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
+        ModelError(delta_translation.inverse() * delta, config_.max_range) > voxel) {
+        const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
+        const std::size_t alternative_agreeing =
+            alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel, 1) : 0;
+        if (icp.valid) agreeing = CountAgreeing(source, icp.T_world_sensor, voxel, 1);
+        if (alternative_agreeing > agreeing) {
+            icp = alternative;
+            agreeing = alternative_agreeing;
+            stats_.turn_hypothesis_used = true;
+        }
+    }
+    stats_.agreement = source.empty() ? 0.0 : std::min(1.0, static_cast<double>(agreeing) / static_cast<double>(source.size()));
+    stats_.iterations = icp.iterations;
+    stats_.correspondences = icp.correspondences;
+    stats_.plane_correspondences = icp.plane_correspondences;
+    stats_.planes_only = icp.planes_only;
+    // A correction is judged by its translation: the rotation part of the model error grows with
+    // max_range, and a swaying handheld sensor turns 15 deg between keyframes legitimately.
+    const double correction = (T_start.inverse() * icp.T_world_sensor).translation().norm();
+    if (!icp.valid) {
+        return "only " + std::to_string(icp.correspondences) + " correspondences within " + Describe(params.max_correspondence_distance) +
+               " m of the map";
+    }
+    if (!icp.T_world_sensor.matrix().allFinite() || !(correction <= config_.max_correction))
+        return "ICP diverged (correction of " + Describe(correction) + " m)";
+    if (stats_.agreement < config_.min_agreement) {
+        return "only " + Describe(100.0 * stats_.agreement) + "% of the points lie within a voxel of the map after ICP (minimum " +
+               Describe(100.0 * config_.min_agreement) + "%): not the scene the map shows";
+    }
+    if (config_.max_correction_factor > 0.0 && correction > CorrectionLimit()) {
+        return "ICP jumped " + Describe(correction) + " m from the motion prediction (limit " + Describe(CorrectionLimit()) +
+               " m: " + Describe(config_.max_correction_factor) + " x the RMS of earlier corrections)";
+    }
+    T_new = config_.planar ? ProjectToPlanar(icp.T_world_sensor) : Orthonormalized(icp.T_world_sensor);
+    return {};
+}
+
 Eigen::Isometry3d LidarOdometry::RegisterScan(const Scan& scan) { return RegisterPrepared(scan, PrepareScan(scan, config_)); }
 
 Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan prepared) {
@@ -179,61 +268,27 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
     stats_.sigma = sigma;
     std::string problem = DegeneracyReason(source);
     Eigen::Isometry3d T_new = T_predicted;
+    Eigen::Isometry3d T_start = T_predicted;  // where the ICP started: the threshold measures its error
     if (problem.empty() && !map_.Empty()) {
-        IcpParams params;
-        params.max_correspondence_distance = 3.0 * sigma;
-        params.kernel = config_.kernel == IcpKernel::kPaper ? sigma / 3.0 : sigma;
-        params.max_iterations = config_.max_iterations;
-        params.convergence = config_.convergence;
-        params.anderson_depth = config_.anderson_depth;
-        params.min_correspondences = config_.min_correspondences;
-        params.planar = config_.planar;
-        params.point_to_plane = config_.residual == IcpResidual::kPointToPlane;
-        IcpResult icp = RegisterPointsToMap(source, map_, T_predicted, params);
-        // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
-        // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
-        const std::size_t stride = std::max<std::size_t>(1, source.size() / kAgreementSamples);
-        std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel, stride) : 0;
-        // A swaying sensor (handheld, legged) reverses its turns between scans, so constant velocity
-        // can predict the rotation wrongly by more than ICP's basin. When the predicted turn moves
-        // points by more than a voxel, also register from the translation-only prediction and keep
-        // the result more points agree with (within one voxel of the map). Only for extrapolated
-        // motion: a wheel-odometry prior measures the turn.
-        Eigen::Isometry3d delta_translation = delta;
-        delta_translation.linear().setIdentity();
-        if (config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
-            ModelError(delta_translation.inverse() * delta, config_.max_range) > voxel) {
-            const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
-            const std::size_t alternative_agreeing =
-                alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel, 1) : 0;
-            if (icp.valid) agreeing = CountAgreeing(source, icp.T_world_sensor, voxel, 1);
-            if (alternative_agreeing > agreeing) {
-                icp = alternative;
-                agreeing = alternative_agreeing;
-                stats_.turn_hypothesis_used = true;
+        // A 2D laser without wheel odometry moves between key frames by more than ICP's basin: every
+        // frame starts from a correlative match around the prediction. With a prior, only a frame whose
+        // ICP failed gets one (the prior is usually right, and the match costs more than the ICP).
+        const bool correlative = config_.planar && config_.correlative_start && !poses_.empty();
+        const bool correlative_first = correlative && !stats_.prior_used;
+        double resolution = 0.0;
+        if (correlative_first) T_start = CorrelativeStart(source, last_pose, delta, resolution);
+        problem = RegisterFrom(source, T_start, delta, last_pose, !correlative_first, resolution, T_new);
+        if (!problem.empty() && correlative && !correlative_first) {
+            const Eigen::Isometry3d T_match = CorrelativeStart(source, last_pose, delta, resolution);
+            const OdometryFrameStats first_try = stats_;
+            Eigen::Isometry3d T_retry = T_predicted;
+            if (RegisterFrom(source, T_match, delta, last_pose, false, resolution, T_retry).empty()) {
+                problem.clear();
+                T_new = T_retry;
+                T_start = T_match;
+            } else {
+                stats_ = first_try;  // report the first failure
             }
-        }
-        stats_.agreement = source.empty() ? 0.0 : std::min(1.0, static_cast<double>(agreeing) / static_cast<double>(source.size()));
-        stats_.iterations = icp.iterations;
-        stats_.correspondences = icp.correspondences;
-        stats_.plane_correspondences = icp.plane_correspondences;
-        stats_.planes_only = icp.planes_only;
-        // A correction is judged by its translation: the rotation part of the model error grows with
-        // max_range, and a swaying handheld sensor turns 15 deg between keyframes legitimately.
-        const double correction = (T_predicted.inverse() * icp.T_world_sensor).translation().norm();
-        if (!icp.valid) {
-            problem = "only " + std::to_string(icp.correspondences) + " correspondences within " +
-                      Describe(params.max_correspondence_distance) + " m of the map";
-        } else if (!icp.T_world_sensor.matrix().allFinite() || !(correction <= config_.max_correction)) {
-            problem = "ICP diverged (correction of " + Describe(correction) + " m)";
-        } else if (stats_.agreement < config_.min_agreement) {
-            problem = "only " + Describe(100.0 * stats_.agreement) + "% of the points lie within a voxel of the map after ICP (minimum " +
-                      Describe(100.0 * config_.min_agreement) + "%): not the scene the map shows";
-        } else if (config_.max_correction_factor > 0.0 && correction > CorrectionLimit()) {
-            problem = "ICP jumped " + Describe(correction) + " m from the motion prediction (limit " + Describe(CorrectionLimit()) +
-                      " m: " + Describe(config_.max_correction_factor) + " x the RMS of earlier corrections)";
-        } else {
-            T_new = config_.planar ? ProjectToPlanar(icp.T_world_sensor) : Orthonormalized(icp.T_world_sensor);
         }
     }
 
@@ -243,9 +298,9 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
                          (stats_.prior_used ? "from the odometry prior" : "by constant velocity");
         ++num_degenerate_;
     } else {
-        threshold_.Update(T_predicted.inverse() * T_new);
+        threshold_.Update(T_start.inverse() * T_new);
         if (stats_.prior_used) prior_bias_.Update(raw_prior_delta_, last_pose.inverse() * T_new);
-        const double correction = (T_predicted.inverse() * T_new).translation().norm();
+        const double correction = (T_start.inverse() * T_new).translation().norm();
         sum_squared_corrections_ += correction * correction;
         ++num_corrections_;
         points_in_world_.resize(downsampled_.size());

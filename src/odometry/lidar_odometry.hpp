@@ -32,6 +32,8 @@ struct OdometryFrameStats {
     bool prior_used = false;             ///< the prediction came from Scan::T_odom_sensor
     double prior_heading_bias = 0.0;     ///< [rad/m] the prior's estimated turn per metre about the sensor z, removed
     bool turn_hypothesis_used = false;   ///< the translation-only prediction registered better
+    bool correlative_used = false;       ///< the ICP started from a correlative scan match
+    double correlative_score = 0.0;      ///< its mean likelihood in [0, 1]
     bool degenerate = false;             ///< pose = prediction, map not updated
     std::string warning;                 ///< why the frame was degenerate
 };
@@ -79,6 +81,14 @@ class LidarOdometry {
     /// point checked, the count scaled back).
     std::size_t CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius,
                               std::size_t stride) const;
+    /// The pose a correlative match of `source` against the map finds around the motion `delta` from
+    /// `last_pose` (the prediction when there is nothing to match); `resolution` [m] gets its cell (0: none).
+    Eigen::Isometry3d CorrelativeStart(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
+                                       const Eigen::Isometry3d& delta, double& resolution);
+    /// ICP from `T_start` with the checks of a registration; empty and `T_new` set when it registered,
+    /// else why not. `start_resolution` [m]: the start's known uncertainty (a correlative cell).
+    std::string RegisterFrom(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_start, const Eigen::Isometry3d& delta,
+                             const Eigen::Isometry3d& last_pose, bool turn_hypothesis, double start_resolution, Eigen::Isometry3d& T_new);
     /// [m] a translation correction beyond this is a jump, not a registration.
     double CorrectionLimit() const;
 
@@ -95,6 +105,7 @@ class LidarOdometry {
     // Per-frame buffers kept between frames (issue 19: no allocation per scan).
     std::vector<Eigen::Vector3d> source_;           ///< registration points (1.5 v)
     std::vector<Eigen::Vector3d> points_in_world_;  ///< map points of the frame, world frame
+    std::vector<Eigen::Vector3d> reference_;        ///< map points a correlative match rasterizes
     bool map_update_pending_ = false;               ///< points_in_world_ not yet in the map
     Eigen::Vector3d map_update_origin_ = Eigen::Vector3d::Zero();  ///< [m] the frame's position
     double map_update_radius_ = 0.0;                ///< [m] the range then

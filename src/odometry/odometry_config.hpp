@@ -51,6 +51,13 @@ struct OdometryConfig {
     /// more than a voxel, keeping the better result (swaying handheld sensors; 2 ICPs on those frames;
     /// never with a wheel-odometry prior, which measures the turn).
     bool turn_hypothesis = true;
+    /// Planar mode: start the ICP from a correlative scan match (odometry/correlative_matcher.hpp) over
+    /// the windows below around the prediction: on every frame without a wheel-odometry prior (key
+    /// frames of a laser logged alone are up to ~1 m and 30 deg apart, far outside ICP's basin), and
+    /// with one on a frame whose ICP from the prior failed.
+    bool correlative_start = true;
+    double correlative_window = 1.5;               ///< [m] translations searched each way (x and y)
+    double correlative_angular_window_deg = 45.0;  ///< [deg] rotations searched each way
     bool deskew = false;             ///< constant-velocity motion compensation of each sweep
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)

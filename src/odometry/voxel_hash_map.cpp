@@ -376,4 +376,12 @@ std::vector<Eigen::Vector3d> VoxelHashMap::Points() const {
     return points;
 }
 
+void VoxelHashMap::PointsNear(const Eigen::Vector3d& origin, double radius, std::vector<Eigen::Vector3d>& out) const {
+    const double radius2 = radius * radius;
+    for (std::size_t slot = 0; slot < voxels_.size(); ++slot) {
+        const Eigen::Vector3d& p = points_[slot * max_points_];
+        if ((p - origin).squaredNorm() <= radius2) out.push_back(p);
+    }
+}
+
 }  // namespace revisit

@@ -79,6 +79,9 @@ class VoxelHashMap {
     std::size_t NumVoxels() const { return voxels_.size(); }
     std::size_t NumPoints() const;
     std::vector<Eigen::Vector3d> Points() const;
+    /// Appends the first point of every voxel within `radius` [m] of `origin` (one per voxel: a
+    /// picture of the map at its voxel's resolution).
+    void PointsNear(const Eigen::Vector3d& origin, double radius, std::vector<Eigen::Vector3d>& out) const;
     double voxel_size() const { return voxel_size_; }
 
   private:

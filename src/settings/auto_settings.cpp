@@ -14,7 +14,7 @@ namespace {
 
 /// Scans profiled for the settings (the first seconds of a sequence).
 constexpr std::size_t kProfileScans = 10;
-/// 2D lasers: scans read at most while looking for turns to measure the aperture.
+/// 2D lasers: scans read at most while looking for scan pairs to measure the aperture.
 constexpr std::size_t kMaxApertureScans = 5000;
 /// An explicit value this far (either way) from the data's suggestion gets a warning.
 constexpr double kContradictionFactor = 3.0;
@@ -190,7 +190,7 @@ std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optio
     if (aperture && aperture->contradicts) {
         choices.push_back({"input.laser_aperture_deg", aperture->measured_deg, {},
                            "the file states " + Number(aperture->stated_deg, 1) + " deg; " + std::to_string(aperture->pairs) +
-                               " turns measured against the wheel odometry say " + Number(aperture->measured_deg, 1) + " deg"});
+                               " scan pairs agree best at " + Number(aperture->measured_deg, 1) + " deg"});
     }
     const SettingChoice voxel = ChooseVoxel(p);
     const double v = voxel.value;
@@ -264,6 +264,10 @@ AutoSettings ApplyAutoSettings(PipelineConfig& config, const DataProfile& profil
         result.warnings.push_back("2D laser aperture corrected from " + Number(aperture->used_deg, 1) + " to " +
                                   Number(aperture->measured_deg, 1) + " deg (" + aperture->Describe() +
                                   "); --set input.laser_aperture_deg=... to choose");
+    }
+    if (aperture && aperture->doubtful && config.explicit_keys.count("input.laser_aperture_deg") == 0) {
+        result.warnings.push_back("2D laser aperture kept at " + Number(aperture->used_deg, 1) + " deg, though " + aperture->Describe() +
+                                  ": not beyond doubt; --set input.laser_aperture_deg=... to choose");
     }
     return result;
 }

@@ -1,0 +1,129 @@
+// The correlative 2D scan match on real laser scans of a building (carmen_kitti: key frames of a
+// 180-deg laser without any odometry) and the odometry that starts from it.
+#include "odometry/correlative_matcher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "odometry/lidar_odometry.hpp"
+#include "test_data.hpp"
+
+namespace revisit {
+namespace {
+
+std::filesystem::path CarmenDir(const std::string& name) { return test::SharedData("carmen_kitti/" + name); }
+
+Scan LoadCarmenScan(const std::string& name, int index) {
+    char file[32];
+    std::snprintf(file, sizeof(file), "%06d.bin", index);
+    const auto path = CarmenDir(name) / "velodyne" / file;
+    std::vector<float> raw(std::filesystem::file_size(path) / sizeof(float));
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    const std::size_t read = f ? std::fread(raw.data(), sizeof(float), raw.size(), f) : 0;
+    if (f) std::fclose(f);
+    Scan scan;
+    scan.index = static_cast<std::size_t>(index);
+    scan.timestamp = index;
+    for (std::size_t i = 0; i + 3 < read; i += 4) scan.points.emplace_back(raw[i], raw[i + 1], raw[i + 2]);
+    return scan;
+}
+
+/// The reference poses (3x4 rows) as planar isometries.
+std::vector<Eigen::Isometry3d> LoadPoses(const std::string& name) {
+    std::vector<Eigen::Isometry3d> poses;
+    std::ifstream in(CarmenDir(name) / "poses.txt");
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream fields(line);
+        Eigen::Matrix<double, 3, 4> m;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) fields >> m(r, c);
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.matrix().topRows<3>() = m;
+        poses.push_back(T);
+    }
+    return poses;
+}
+
+double Yaw(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+
+Eigen::Isometry3d Planar(double x, double y, double yaw) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(x, y, 0.0);
+    return T;
+}
+
+std::vector<Eigen::Vector3d> Points(const Scan& scan, const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity()) {
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& p : scan.points) points.push_back(T * p.cast<double>());
+    return points;
+}
+
+TEST(CorrelativeMatcher, RecoversAKnownOffsetBetweenTwoRealScans) {
+    REVISIT_REQUIRE_DATA(CarmenDir("seattle") / "poses.txt");
+    const auto poses = LoadPoses("seattle");
+    CorrelativeMatchConfig config;
+    int checked = 0;
+    // Consecutive key frames (0.5-1 m and up to ~30 deg apart in this log).
+    for (int i = 10; i + 2 < static_cast<int>(poses.size()); i += 23) {
+        const Scan earlier = LoadCarmenScan("seattle", i), later = LoadCarmenScan("seattle", i + 1);
+        const Eigen::Isometry3d T_truth = poses[i].inverse() * poses[i + 1];  // later in earlier's frame
+        // Start 0.8 m and 25 deg away from the truth.
+        const Eigen::Isometry3d T_start = T_truth * Planar(0.8 * std::cos(i), 0.8 * std::sin(i), (i % 2 ? 25.0 : -25.0) * M_PI / 180.0);
+        const CorrelativeMatch match = MatchCorrelative2D(Points(earlier), Points(later), T_start, config);
+        ASSERT_TRUE(match.valid);
+        const Eigen::Isometry3d error = T_truth.inverse() * match.T_world_sensor;
+        EXPECT_LT(error.translation().norm(), 0.15) << "pair " << i;
+        EXPECT_LT(std::abs(Yaw(error)) * 180.0 / M_PI, 2.0) << "pair " << i;
+        EXPECT_GT(match.score, 0.3) << "pair " << i;
+        ++checked;
+    }
+    EXPECT_GE(checked, 8);
+}
+
+/// The odometry with the settings the data gives these logs (a 2D laser: x, y, yaw; 5 cm voxels).
+OdometryConfig PlanarConfig() {
+    OdometryConfig config;
+    config.planar = true;
+    config.max_range = 70.0;
+    config.min_range = 0.3;
+    config.voxel_size = 0.05;
+    config.initial_threshold = 0.1;
+    config.min_motion_th = 0.005;
+    return config;
+}
+
+// Every step of a 190 m walk through a building, 0.5-1 m and up to 80 deg apart, within 0.25 m and 3 deg.
+TEST(CorrelativeOdometry, KeyFramesWithoutOdometryNeverDiverge) {
+    const std::string log = "seattle";
+    REVISIT_REQUIRE_DATA(CarmenDir(log) / "poses.txt");
+    const auto poses = LoadPoses(log);
+    LidarOdometry odometry(PlanarConfig());
+    double worst_step = 0.0;
+    int bad_steps = 0;
+    for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
+        odometry.RegisterScan(LoadCarmenScan(log, i));
+        EXPECT_FALSE(odometry.LastStats().degenerate) << odometry.LastStats().warning;
+        if (i == 0) continue;
+        const Eigen::Isometry3d truth = poses[i - 1].inverse() * poses[i];
+        const Eigen::Isometry3d estimate = odometry.poses()[i - 1].inverse() * odometry.poses()[i];
+        const Eigen::Isometry3d error = truth.inverse() * estimate;
+        worst_step = std::max(worst_step, error.translation().norm());
+        if (error.translation().norm() > 0.25 || std::abs(Yaw(error)) > 3.0 * M_PI / 180.0) {
+            ++bad_steps;
+            ADD_FAILURE() << "step " << i << ": error " << error.translation().norm() << " m, " << Yaw(error) * 180.0 / M_PI
+                          << " deg (the truth moved " << truth.translation().norm() << " m, " << Yaw(truth) * 180.0 / M_PI << " deg)";
+        }
+    }
+    EXPECT_EQ(odometry.NumDegenerateFrames(), 0u);
+    EXPECT_EQ(bad_steps, 0) << "of " << poses.size() - 1 << " steps, worst " << worst_step << " m";
+    EXPECT_TRUE(odometry.LastStats().correlative_used);
+}
+
+}  // namespace
+}  // namespace revisit
