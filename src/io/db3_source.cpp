@@ -57,9 +57,14 @@ class Db3Source final : public BagSource {
     explicit Db3Source(const fs::path& folder) : folder_(folder), files_(Db3Files(folder)) {
         CheckMetadata();
         if (files_.empty()) throw DatasetError(folder_, "no .db3 file next to metadata.yaml");
-        for (std::size_t f = 0; f < files_.size(); ++f) {
-            Open(f);
-            ReadTopics(f);
+        try {
+            for (std::size_t f = 0; f < files_.size(); ++f) {
+                Open(f);
+                ReadTopics(f);
+            }
+        } catch (...) {
+            Close();  // a throwing constructor runs no destructor
+            throw;
         }
     }
     ~Db3Source() override { Close(); }
@@ -144,13 +149,18 @@ class Db3Source final : public BagSource {
             Close();
             throw DatasetError(files_[f], "cannot open as sqlite3: " + problem);
         }
+        // No value can be longer than the file: a damaged record's length is refused before sqlite
+        // allocates it (by default sqlite allows 1 GB).
+        std::error_code ec;
+        const std::uintmax_t bytes = fs::file_size(files_[f], ec);
+        sqlite3_limit(db_, SQLITE_LIMIT_LENGTH, int(std::min<std::uintmax_t>(ec ? 0 : bytes + 1, 1'000'000'000)));
         file_ = f;
     }
 
     void Close() {
         if (statement_) sqlite3_finalize(statement_);
         statement_ = nullptr;
-        if (db_) sqlite3_close(db_);
+        if (db_) sqlite3_close_v2(db_);
         db_ = nullptr;
     }
 

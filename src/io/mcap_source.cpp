@@ -19,6 +19,9 @@ constexpr std::uint8_t kMagic[8] = {0x89, 'M', 'C', 'A', 'P', 0x30, '\r', '\n'};
 enum Op : std::uint8_t { kHeader = 1, kFooter = 2, kSchema = 3, kChannel = 4, kMessage = 5, kChunk = 6, kDataEnd = 0x0F };
 constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;  ///< [bytes] a chunk declaring more is damaged (writers use ~1 MiB)
 constexpr std::size_t kRecordHeader = 9;              ///< opcode + uint64 length
+/// [bytes] decompressed chunks the first pass keeps for the second, which then skips decompressing them
+/// (the first pass reads the poses, the second the scans): a recording's first 64 MiB.
+constexpr std::size_t kKeptChunkBytes = 64u << 20;
 
 class McapSource final : public BagSource {
   public:
@@ -164,14 +167,22 @@ class McapSource final : public BagSource {
                                 std::to_string(kMaxChunkBytes) + ")");
         }
         const std::size_t have = std::min<std::uint64_t>(records, available - header);
+        bool keep = false;
         try {
             if (compression.empty()) {
                 if (declared != records) Damaged(record, "uncompressed chunk of " + std::to_string(records) + " bytes declares " + std::to_string(declared));
                 chunk_ = raw_.data() + header;
                 chunk_size_ = have;
+            } else if (const auto kept = kept_.find(record); kept != kept_.end() && !counting_) {
+                plain_.swap(kept->second);
+                kept_bytes_ -= plain_.size();
+                kept_.erase(kept);
+                chunk_ = plain_.data();
+                chunk_size_ = plain_.size();
             } else {
                 chunk_size_ = Decompress(compression, raw_.data() + header, have, declared, cut, plain_);
                 chunk_ = plain_.data();
+                keep = counting_ && !cut && kept_bytes_ + chunk_size_ <= kKeptChunkBytes;
             }
         } catch (const WireError& e) {
             Damaged(record, std::string("chunk: ") + e.what());
@@ -179,6 +190,10 @@ class McapSource final : public BagSource {
         // The CRC once, in the first pass: the second reads the same bytes.
         if (counting_ && !cut && crc != 0 && std::uint32_t(crc32(0, chunk_, uInt(chunk_size_))) != crc) {
             Damaged(record, "chunk CRC mismatch: the chunk's data is damaged");
+        }
+        if (keep) {  // only chunks that passed their checks
+            kept_[record].assign(chunk_, chunk_ + chunk_size_);
+            kept_bytes_ += chunk_size_;
         }
         in_chunk_ = true;
         chunk_cut_ = cut;
@@ -281,6 +296,8 @@ class McapSource final : public BagSource {
     std::vector<signed char> wanted_cache_;
     bool counting_ = false, counted_ = false, ended_ = false, in_chunk_ = false, chunk_cut_ = false;
     std::vector<std::uint8_t> record_, raw_, plain_;
+    std::map<std::uint64_t, std::vector<std::uint8_t>> kept_;  ///< by chunk record offset
+    std::size_t kept_bytes_ = 0;
     const std::uint8_t* chunk_ = nullptr;
     std::size_t chunk_size_ = 0, chunk_pos_ = 0;
     std::uint64_t chunk_record_ = 0;
