@@ -1,11 +1,17 @@
 #include "io/timed_poses.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "core/pose_interpolation.hpp"
 
 namespace revisit {
+namespace {
+/// [s] rounded to the microsecond for messages: absolute stamps keep their digits, spacings lose
+/// the float noise of their sums (0.349857 instead of 0.349856500000001).
+double Micro(double seconds) { return std::round(seconds * 1e6) / 1e6; }
+}  // namespace
 
 double MedianSpacing(const std::vector<double>& times) {
     std::vector<double> spacing;
@@ -41,8 +47,8 @@ std::optional<Eigen::Isometry3d> TimedPoses::At(double t) const {
 std::string TimedPoses::DescribeSpan() const {
     std::ostringstream out;
     out.precision(15);
-    out << "t = " << first_time() << " .. " << last_time() << " s (" << size() << " poses; end tolerance "
-        << end_tolerance_ << " s, gaps up to " << max_gap_ << " s interpolated)";
+    out << "t = " << Micro(first_time()) << " .. " << Micro(last_time()) << " s (" << size() << " poses; end tolerance "
+        << Micro(end_tolerance_) << " s, gaps up to " << Micro(max_gap_) << " s interpolated)";
     return out.str();
 }
 
@@ -57,8 +63,8 @@ std::string UnpairedScans::Describe() const {
     std::ostringstream out;
     out.precision(15);
     out << count << (count == 1 ? " scan has" : " scans have") << " no reference pose (outside the reference's time span "
-        << "or in a gap of it; left out of the metrics): first scan " << first_index << " at t = " << first_time << " s";
-    if (count > 1) out << ", last scan " << last_index << " at t = " << last_time << " s";
+        << "or in a gap of it; left out of the metrics): first scan " << first_index << " at t = " << Micro(first_time) << " s";
+    if (count > 1) out << ", last scan " << last_index << " at t = " << Micro(last_time) << " s";
     return out.str();
 }
 

@@ -1,5 +1,6 @@
 #include "pipeline/pose_file_source.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -34,7 +35,7 @@ Eigen::Isometry3d PoseFileSource::Required(std::size_t index, double timestamp) 
     if (auto pose = At(index, timestamp)) return *pose;
     std::ostringstream problem;
     problem.precision(15);
-    problem << option_ << " (TUM, paired by time stamp): scan " << index << " at t = " << timestamp
+    problem << option_ << " (TUM, paired by time stamp): scan " << index << " at t = " << std::round(timestamp * 1e6) / 1e6
             << " s is outside the file's poses or in a gap of them, " << timed_->DescribeSpan()
             << "; every scan needs a pose (input.reference_end_tolerance / input.reference_max_gap widen the pairing)";
     throw DatasetError(file_, problem.str());
