@@ -218,6 +218,7 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
     match.angle_step = angle_step;
     match.points = n;
     match.valid = true;
+    match.at_edge = std::abs(best.dx) >= window || std::abs(best.dy) >= window || (angles > 0 && std::abs(best.angle) >= angles);
     return match;
 }
 

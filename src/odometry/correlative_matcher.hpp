@@ -31,6 +31,8 @@ struct CorrelativeMatch {
     double angle_step = 0.0;   ///< [rad] rotation step used
     std::size_t points = 0;    ///< scan points searched with
     bool valid = false;        ///< reference and scan points were there to match
+    /// The best pose lies on the window's border (translation or rotation): the motion may lie beyond.
+    bool at_edge = false;
 };
 
 /// The planar pose near `T_initial` (within the windows) that best explains `points_in_sensor` given

@@ -153,7 +153,18 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vecto
     // The map within reach of any searched pose, one point per voxel.
     reference_.clear();
     map_.PointsNear(T_centre.translation(), config_.max_range + config_.correlative_window, reference_);
-    const CorrelativeMatch match = MatchCorrelative2D(reference_, source, T_centre, match_config);
+    CorrelativeMatch match = MatchCorrelative2D(reference_, source, T_centre, match_config);
+    // A best pose on the window's border says the motion may lie beyond it (a spin in place, a long
+    // step): the search is repeated over twice the windows, and the better match kept.
+    if (match.valid && match.at_edge) {
+        CorrelativeMatchConfig wider = match_config;
+        wider.linear_window *= 2.0;
+        wider.angular_window = std::min(2.0 * wider.angular_window, M_PI);
+        reference_.clear();
+        map_.PointsNear(T_centre.translation(), config_.max_range + wider.linear_window, reference_);
+        const CorrelativeMatch retry = MatchCorrelative2D(reference_, source, T_centre, wider);
+        if (retry.valid && retry.score > match.score) match = retry;
+    }
     stats_.correlative_used = match.valid;
     stats_.correlative_score = match.score;
     resolution = match.valid ? match.resolution : 0.0;
