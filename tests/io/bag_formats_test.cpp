@@ -5,6 +5,7 @@
 
 #include <fstream>
 
+#include "read_all.hpp"
 #include "core/error.hpp"
 #include "io/reader.hpp"
 #include "mcap_test_writer.hpp"
@@ -17,13 +18,6 @@
 
 namespace revisit {
 namespace {
-
-std::vector<Scan> ReadAll(const std::filesystem::path& path, const ReaderOptions& options = {}) {
-    auto reader = OpenDataset(path, options);
-    std::vector<Scan> scans;
-    while (auto scan = reader->Next()) scans.push_back(std::move(*scan));
-    return scans;
-}
 
 void Exec(sqlite3* db, const std::string& sql) {
     char* error = nullptr;
@@ -62,21 +56,21 @@ TEST(Rosbag2Sqlite, IronSchemaVersion4OrderedByTimestampThenId) {
     }
     sqlite3_finalize(insert);
     sqlite3_close(db);
-    const auto scans = ReadAll(folder);
+    const auto scans = test::ReadAllScans(folder);
     ASSERT_EQ(scans.size(), 4u);
     EXPECT_EQ(scans[0].points[0].x(), 1.f);
     EXPECT_EQ(scans[1].points[0].x(), 2.f);
     EXPECT_EQ(scans[2].points[0].x(), 2.5f);
     EXPECT_EQ(scans[3].points[0].x(), 3.f);
     EXPECT_EQ(scans[3].stamp_ns, 300);
-    EXPECT_EQ(ReadAll(folder / "bag_0.db3").size(), 4u);  // the .db3 file itself names its folder
+    EXPECT_EQ(test::ReadAllScans(folder / "bag_0.db3").size(), 4u);  // the .db3 file itself names its folder
 }
 
 TEST(Rosbag2Sqlite, NotADatabaseIsAnError) {
     test::TempDir dir;
     std::ofstream(dir / "metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n";
     std::ofstream(dir / "x_0.db3") << std::string(5000, 'x');
-    EXPECT_THROW(ReadAll(dir.path()), DatasetError);
+    EXPECT_THROW(test::ReadAllScans(dir.path()), DatasetError);
 }
 
 #ifdef REVISIT_HAVE_ROSBAG
@@ -102,7 +96,7 @@ TEST(Ros1Bag, Lz4ChunksWrittenByRosbag) {
             bag.write("/velodyne_points", cloud.header.stamp, cloud);
         }
     }
-    const auto scans = ReadAll(file);
+    const auto scans = test::ReadAllScans(file);
     ASSERT_EQ(scans.size(), 3u);
     EXPECT_EQ(scans[2].points[0], Eigen::Vector3f(2, 1, 2));
     EXPECT_EQ(scans[2].points[1], Eigen::Vector3f(3, 4, 5));
@@ -114,7 +108,7 @@ TEST(Ros1Bag, Lz4ChunksWrittenByRosbag) {
 TEST(Ros1Bag, NotABagIsAnError) {
     test::TempDir dir;
     std::ofstream(dir / "x.bag") << "#ROSBAG V2.0\n" << std::string(100, '\xff');
-    EXPECT_THROW(ReadAll(dir / "x.bag"), DatasetError);
+    EXPECT_THROW(test::ReadAllScans(dir / "x.bag"), DatasetError);
 }
 #endif
 

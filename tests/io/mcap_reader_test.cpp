@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "read_all.hpp"
 #include "core/error.hpp"
 #include "io/reader.hpp"
 #include "mcap_test_writer.hpp"
@@ -17,16 +18,9 @@ std::filesystem::path Write(const std::filesystem::path& file, const std::string
     return file;
 }
 
-std::vector<Scan> ReadAll(const std::filesystem::path& path, const ReaderOptions& options = {}) {
-    auto reader = OpenDataset(path, options);
-    std::vector<Scan> scans;
-    while (auto scan = reader->Next()) scans.push_back(std::move(*scan));
-    return scans;
-}
-
 std::string ErrorOf(const std::filesystem::path& path, const ReaderOptions& options = {}) {
     try {
-        ReadAll(path, options);
+        test::ReadAllScans(path, options);
     } catch (const DatasetError& e) {
         return e.what();
     }
@@ -97,7 +91,7 @@ TEST(McapReader, CutZstdRecordingReadsAPrefix) {
     EXPECT_NE(ErrorOf(copy).find("cut short"), std::string::npos);
     ReaderOptions options;
     options.allow_truncated = true;
-    const auto scans = ReadAll(copy, options);
+    const auto scans = test::ReadAllScans(copy, options);
     // Half the file: about half the scans, the last ones from the cut chunk's decoded part.
     EXPECT_GT(scans.size(), 100u);
     EXPECT_LT(scans.size(), 170u);
@@ -118,8 +112,8 @@ std::string TwoClouds(const std::string& compression) {
 
 TEST(McapReader, Lz4ChunksReadLikeUncompressedOnes) {
     test::TempDir dir;
-    const auto plain = ReadAll(Write(dir / "plain.mcap", TwoClouds("")));
-    const auto lz4 = ReadAll(Write(dir / "lz4.mcap", TwoClouds("lz4")));
+    const auto plain = test::ReadAllScans(Write(dir / "plain.mcap", TwoClouds("")));
+    const auto lz4 = test::ReadAllScans(Write(dir / "lz4.mcap", TwoClouds("lz4")));
     ASSERT_EQ(plain.size(), 2u);
     ASSERT_EQ(lz4.size(), 2u);
     for (std::size_t i = 0; i < 2; ++i) {
@@ -144,7 +138,7 @@ TEST(McapReader, SeveralCloudTopicsAskForTopic) {
     EXPECT_NE(error.find("--topic"), std::string::npos) << error;
     ReaderOptions options;
     options.points_topic = "/rear";
-    const auto scans = ReadAll(file, options);
+    const auto scans = test::ReadAllScans(file, options);
     ASSERT_EQ(scans.size(), 1u);
     EXPECT_EQ(scans[0].points[0], Eigen::Vector3f(2, 2, 2));
 }
@@ -161,7 +155,7 @@ TEST(McapReader, DamagedFilesNameTheFileAndTheByteOffset) {
         ReaderOptions lenient;
         lenient.allow_truncated = true;
         try {
-            ReadAll(file, lenient);  // either an error or a note, never a crash
+            test::ReadAllScans(file, lenient);  // either an error or a note, never a crash
         } catch (const DatasetError&) {
         }
     };

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "read_all.hpp"
 #include "core/error.hpp"
 #include "core/trajectory.hpp"
 #include "io/dataset_summary.hpp"
@@ -11,13 +12,6 @@
 
 namespace revisit {
 namespace {
-
-std::vector<Scan> ReadAll(const std::filesystem::path& path, const ReaderOptions& options = {}) {
-    auto reader = OpenDataset(path, options);
-    std::vector<Scan> scans;
-    while (auto scan = reader->Next()) scans.push_back(std::move(*scan));
-    return scans;
-}
 
 TEST(RawlogReader, SenaLoopActionSensoryFrameLayout) {
     const auto file = test::MrptDataset("2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog");
@@ -40,8 +34,8 @@ TEST(RawlogReader, RotatingScanMatchesTheSameVelodyneScan) {
     const auto rotating_file = test::MrptDataset("rot_scan_velodyne.rawlog");
     REVISIT_REQUIRE_DATA(velodyne_file);
     REVISIT_REQUIRE_DATA(rotating_file);
-    const auto velodyne = ReadAll(velodyne_file);
-    const auto rotating = ReadAll(rotating_file);
+    const auto velodyne = test::ReadAllScans(velodyne_file);
+    const auto rotating = test::ReadAllScans(rotating_file);
     ASSERT_EQ(velodyne.size(), 1u);
     ASSERT_EQ(rotating.size(), 1u);
     EXPECT_EQ(velodyne[0].sensor_label, "Velodyne1_SCAN");
@@ -59,7 +53,7 @@ TEST(RawlogReader, RotatingScanMatchesTheSameVelodyneScan) {
 TEST(RawlogReader, DepthCameraScanIsUnprojected) {
     const auto file = test::MrptDataset("tests_rgbd.rawlog");
     REVISIT_REQUIRE_DATA(file);
-    const auto scans = ReadAll(file);
+    const auto scans = test::ReadAllScans(file);
     ASSERT_EQ(scans.size(), 1u);
     EXPECT_GT(scans[0].points.size(), 100000u);
     // A depth camera sees in front of it: MRPT's sensor frame has +x forward.
@@ -144,7 +138,7 @@ TEST(RawlogWriter, PlanarRangeScansRoundTrip) {
         }
         writer->Finish();
     }
-    const auto scans = ReadAll(dir / "laser.rawlog");
+    const auto scans = test::ReadAllScans(dir / "laser.rawlog");
     ASSERT_EQ(scans.size(), 3u);
     EXPECT_EQ(scans[1].points.size(), 91u);
     EXPECT_NEAR(scans[1].points[10].norm(), 4.0, 1e-4);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "read_all.hpp"
 #include "core/error.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
@@ -16,13 +17,6 @@ namespace {
 
 const std::filesystem::path kBags = test::SharedData("bags");
 const std::filesystem::path kWalk = test::SharedData("livox_handheld_walk");
-
-std::vector<Scan> ReadAll(const std::filesystem::path& path, const ReaderOptions& options = {}) {
-    auto reader = OpenDataset(path, options);
-    std::vector<Scan> scans;
-    while (auto scan = reader->Next()) scans.push_back(std::move(*scan));
-    return scans;
-}
 
 /// orig_times.txt parsed exactly from its decimal text to nanoseconds.
 std::vector<std::int64_t> StampsNs(const std::filesystem::path& file) {
@@ -38,7 +32,7 @@ std::vector<std::int64_t> StampsNs(const std::filesystem::path& file) {
 }
 
 const std::vector<Scan>& KittiScans() {
-    static const std::vector<Scan> scans = ReadAll(kWalk);
+    static const std::vector<Scan> scans = test::ReadAllScans(kWalk);
     return scans;
 }
 

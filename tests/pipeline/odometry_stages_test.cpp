@@ -4,6 +4,7 @@
 
 #include <tbb/global_control.h>
 
+#include "read_all.hpp"
 #include "io/reader.hpp"
 #include "odometry/lidar_odometry.hpp"
 #include "pipeline/odometry_stages.hpp"
@@ -11,13 +12,6 @@
 
 namespace revisit {
 namespace {
-
-std::vector<Scan> ReadAll(const std::filesystem::path& dataset) {
-    std::vector<Scan> scans;
-    auto reader = OpenDataset(dataset, ReaderOptions{});
-    while (auto scan = reader->Next()) scans.push_back(std::move(*scan));
-    return scans;
-}
 
 Poses InStages(const PipelineConfig& config, std::vector<Scan> scans, std::size_t threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
@@ -33,7 +27,7 @@ Poses InStages(const PipelineConfig& config, std::vector<Scan> scans, std::size_
 TEST(OdometryStages, GiveTheLoopsPosesOnKittiScansAtOneAndTwoThreads) {
     const auto dataset = test::SharedData("kitti00_first16");
     REVISIT_REQUIRE_DATA(dataset);
-    const std::vector<Scan> scans = ReadAll(dataset);
+    const std::vector<Scan> scans = test::ReadAllScans(dataset);
     ASSERT_EQ(scans.size(), 16u);
     for (const bool deskew : {false, true}) {
         PipelineConfig config;
