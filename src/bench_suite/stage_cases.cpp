@@ -22,7 +22,7 @@ std::uintmax_t FolderBytes(const std::filesystem::path& path) {
 
 /// Reads the whole dataset each run: MB/s of its files and scans/s.
 void MeasureReader(const CaseContext& c, const std::string& label, const std::filesystem::path& path,
-                   double laser_aperture, const std::string& note) {
+                   double laser_aperture, const std::string& note, const std::string& group = "reader") {
     ReaderOptions options;
     options.laser_aperture = laser_aperture;
     const double megabytes = double(FolderBytes(path)) / 1e6;
@@ -35,11 +35,11 @@ void MeasureReader(const CaseContext& c, const std::string& label, const std::fi
     };
     {
         Measurement measured =
-            Measure("reader/" + label + " scans", "scans/s", FigureKind::kItemsPerSecond, c.scale.repeat, read_all);
+            Measure(group + "/" + label + " scans", "scans/s", FigureKind::kItemsPerSecond, c.scale.repeat, read_all);
         c.Add(std::move(measured), note);
     }
     {
-        Measurement measured = Measure("reader/" + label + " MB", "MB/s", FigureKind::kItemsPerSecond, c.scale.repeat,
+        Measurement measured = Measure(group + "/" + label + " MB", "MB/s", FigureKind::kItemsPerSecond, c.scale.repeat,
                                        [&] { return read_all() > 0 ? megabytes : 0.0; });
         c.Add(std::move(measured), note + ", " + std::to_string(megabytes).substr(0, 5) + " MB");
     }
@@ -93,16 +93,18 @@ void ReaderCases(const CaseContext& c) {
 
 void BagReaderCases(const CaseContext& c) {
     // The same 266 Livox scans as a KITTI folder and as each ROS bag format (../shared/data/bags).
-    if (c.Need("livox_handheld_walk", "reader/livox walk KITTI"))
-        MeasureReader(c, "livox walk KITTI", c.data_dir / "livox_handheld_walk", 0.0, "266 Livox scans, KITTI .bin + poses.txt");
+    if (c.Need("livox_handheld_walk", "bag_reader/livox walk KITTI"))
+        MeasureReader(c, "livox walk KITTI", c.data_dir / "livox_handheld_walk", 0.0, "266 Livox scans, KITTI .bin + poses.txt",
+                      "bag_reader");
     const std::pair<const char*, const char*> bags[] = {
         {"livox_walk.mcap", "MCAP, zstd chunks"},          {"livox_walk_uncompressed.mcap", "MCAP, uncompressed chunks"},
         {"livox_walk_db3", "rosbag2 sqlite3 (Humble)"},    {"livox_walk.bag", "ROS 1 bag, uncompressed chunks"},
         {"livox_walk_bz2.bag", "ROS 1 bag, bz2 chunks"}};
     for (const auto& [name, note] : bags) {
         const std::string label = std::string("livox walk ") + name;
-        if (c.Need(std::filesystem::path("bags") / name, "reader/" + label))
-            MeasureReader(c, label, c.data_dir / "bags" / name, 0.0, std::string("the same 266 scans + /odom + /ground_truth, ") + note);
+        if (c.Need(std::filesystem::path("bags") / name, "bag_reader/" + label))
+            MeasureReader(c, label, c.data_dir / "bags" / name, 0.0, std::string("the same 266 scans + /odom + /ground_truth, ") + note,
+                          "bag_reader");
     }
 }
 

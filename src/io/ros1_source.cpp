@@ -53,10 +53,19 @@ void CheckRecordLengths(const std::filesystem::path& file) {
             throw DatasetError(file, "damaged ROS 1 bag: record data at byte offset " + std::to_string(at) + " runs past the end");
         }
         // A chunk's "size" field: what rosbag allocates to decompress it.
-        for (std::size_t p = 0; p + 4 <= header.size();) {
+        // Every field must lie inside its header: rosbag's ros::Header::parse copies what a field's
+        // length says without checking it (the fuzzer's heap overflow).
+        for (std::size_t p = 0; p < header.size();) {
             std::uint32_t field = 0;
+            if (header.size() - p < 4) {
+                throw DatasetError(file, "damaged ROS 1 bag: record header at byte offset " + std::to_string(at) +
+                                             " ends inside a field length");
+            }
             std::memcpy(&field, header.data() + p, 4);
-            if (field > header.size() - p - 4) break;  // rosbag reports malformed fields itself
+            if (field > header.size() - p - 4) {
+                throw DatasetError(file, "damaged ROS 1 bag: a header field at byte offset " + std::to_string(at + 4 + p) +
+                                             " runs past its record header");
+            }
             if (field == 9 && std::memcmp(header.data() + p + 4, "size=", 5) == 0) {
                 std::uint32_t declared = 0;
                 std::memcpy(&declared, header.data() + p + 9, 4);
