@@ -10,8 +10,9 @@ int main(int argc, char** argv) {
     revisit::RegisterSimulatorDatasets();  // `sim:PRESET` wherever a dataset is named
     CLI::App root{
         "revisit finds loop closures in LiDAR and 2D-laser sequences and corrects the drifted trajectory.\n"
-        "Datasets: KITTI-style folders (velodyne/*.bin), folders of .pcd/.ply scans, MRPT rawlogs, and the\n"
-        "simulator itself (sim:PRESET, e.g. sim:demo: scans made as they are read, nothing on disk).\n"
+        "Datasets: KITTI-style folders (velodyne/*.bin), folders of .pcd/.ply scans, MRPT rawlogs, ROS bags\n"
+        "(.bag, .mcap, rosbag2 folders), CARMEN logs, MulRan folders, and the simulator itself (sim:PRESET,\n"
+        "e.g. sim:demo: scans made as they are read, nothing on disk).\n"
         "Run `revisit SUBCOMMAND --help` for each command's options and examples.",
         "revisit"};
     root.require_subcommand(1);
