@@ -1,17 +1,12 @@
 #include "io/bag_poses.hpp"
 
+#include "core/pose_interpolation.hpp"
+
 #include <algorithm>
 #include <map>
 #include <queue>
 
 namespace revisit {
-
-Eigen::Isometry3d Interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::Quaterniond(a.linear()).slerp(s, Eigen::Quaterniond(b.linear())).toRotationMatrix();
-    T.translation() = (1.0 - s) * a.translation() + s * b.translation();
-    return T;
-}
 
 void PoseSeries::Sort() {
     std::stable_sort(poses_.begin(), poses_.end(),
@@ -27,9 +22,11 @@ std::vector<PoseMsg>::const_iterator After(const std::vector<PoseMsg>& poses, st
 PoseMsg Between(const PoseMsg& a, const PoseMsg& b, std::int64_t t) {
     PoseMsg pose = a;
     pose.stamp_ns = t;
-    pose.T = Interpolate(a.T, b.T, double(t - a.stamp_ns) / double(b.stamp_ns - a.stamp_ns));
+    pose.T = InterpolatePose(a.T, b.T, double(t - a.stamp_ns) / double(b.stamp_ns - a.stamp_ns));
     return pose;
 }
+
+double Seconds(std::int64_t ns) { return double(ns) * 1e-9; }
 }  // namespace
 
 std::optional<PoseMsg> PoseSeries::Prior(std::int64_t t) const {
@@ -46,7 +43,23 @@ std::optional<PoseMsg> PoseSeries::Reference(std::int64_t t, std::int64_t tolera
     if (before && before->stamp_ns == t) return *before;
     const bool before_ok = before && t - before->stamp_ns <= tolerance;
     const bool next_ok = next != poses_.end() && next->stamp_ns - t <= tolerance;
-    if (before_ok && next_ok) return Between(*before, *next, t);
+    if (before_ok && next_ok) {
+        // Stamps relative to t keep the nanoseconds that seconds since 1970 would round away.
+        const auto at = [t](const PoseMsg& p) { return StampedPose{Seconds(p.stamp_ns - t), &p.T}; };
+        StampedPose previous, following;
+        if (before != &poses_.front() && before->stamp_ns - std::prev(before)->stamp_ns <= 2 * tolerance &&
+            std::prev(before)->stamp_ns < before->stamp_ns) {
+            previous = at(*std::prev(before));
+        }
+        if (std::next(next) != poses_.end() && std::next(next)->stamp_ns - next->stamp_ns <= 2 * tolerance &&
+            std::next(next)->stamp_ns > next->stamp_ns) {
+            following = at(*std::next(next));
+        }
+        PoseMsg pose = *before;
+        pose.stamp_ns = t;
+        pose.T = InterpolatePoseCubic(previous, at(*before), at(*next), following, 0.0);
+        return pose;
+    }
     if (before_ok) return *before;
     if (next_ok) return *next;
     return std::nullopt;

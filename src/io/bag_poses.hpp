@@ -24,15 +24,13 @@ class PoseSeries {
     /// when there is one; none before the first pose.
     std::optional<PoseMsg> Prior(std::int64_t t_ns) const;
     /// The reference at `t`: exact, else interpolated when the poses either side are both within
-    /// `tolerance_ns`, else the nearer one within it, else none.
+    /// `tolerance_ns` (the cubic of core/pose_interpolation.hpp, its outer neighbours used when no
+    /// farther than twice the tolerance from theirs), else the nearer one within it, else none.
     std::optional<PoseMsg> Reference(std::int64_t t_ns, std::int64_t tolerance_ns) const;
 
   private:
     std::vector<PoseMsg> poses_;
 };
-
-/// a..b at s in [0, 1]: linear in translation, slerp in rotation.
-Eigen::Isometry3d Interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s);
 
 /// Static transforms (tf_static) as a tree of frames.
 class StaticFrames {

@@ -41,7 +41,16 @@ std::optional<Eigen::Isometry3d> TimedPoses::At(double t) const {
     if (times[before] == t) return trajectory_.poses[before];
     const double gap = times[after] - times[before];
     if (gap > max_gap_) return std::nullopt;
-    return InterpolatePose(trajectory_.poses[before], trajectory_.poses[after], (t - times[before]) / gap);
+    // The neighbours outside the segment shape the curve only when they are not across a gap.
+    const auto& poses = trajectory_.poses;
+    StampedPose previous, next;
+    if (before > 0 && times[before] - times[before - 1] <= max_gap_ && times[before] > times[before - 1]) {
+        previous = {times[before - 1], &poses[before - 1]};
+    }
+    if (after + 1 < times.size() && times[after + 1] - times[after] <= max_gap_ && times[after + 1] > times[after]) {
+        next = {times[after + 1], &poses[after + 1]};
+    }
+    return InterpolatePoseCubic(previous, {times[before], &poses[before]}, {times[after], &poses[after]}, next, t);
 }
 
 std::string TimedPoses::DescribeSpan() const {

@@ -40,3 +40,47 @@ TEST(PoseInterpolation, TakesTheShorterArc) {
 
 }  // namespace
 }  // namespace revisit
+
+namespace revisit {
+namespace {
+
+/// Uniformly accelerated motion with a turn, sampled at uneven times: what a reference at another
+/// rate than the scans looks like between its poses.
+Eigen::Isometry3d Accelerating(double t) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(0.3 * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(1.0 + 2.0 * t + 0.7 * t * t, -0.4 * t * t, 0.1 * t);
+    return T;
+}
+
+TEST(PoseInterpolationCubic, FollowsAcceleratedMotionAtUnevenSpacing) {
+    const double times[4] = {0.0, 0.35, 1.6, 1.9};  // spacings 0.35, 1.25, 0.3 s
+    Eigen::Isometry3d poses[4];
+    for (int i = 0; i < 4; ++i) poses[i] = Accelerating(times[i]);
+    const StampedPose before{times[0], &poses[0]}, a{times[1], &poses[1]}, b{times[2], &poses[2]}, after{times[3], &poses[3]};
+    double worst_cubic = 0.0, worst_linear = 0.0;
+    for (double t = times[1]; t <= times[2]; t += 0.05) {
+        const Eigen::Vector3d truth = Accelerating(t).translation();
+        const double s = (t - times[1]) / (times[2] - times[1]);
+        worst_cubic = std::max(worst_cubic, (InterpolatePoseCubic(before, a, b, after, t).translation() - truth).norm());
+        worst_linear = std::max(worst_linear, (InterpolatePose(poses[1], poses[2], s).translation() - truth).norm());
+        // The rotation is the slerp's, whatever the neighbours.
+        EXPECT_TRUE(InterpolatePoseCubic(before, a, b, after, t).linear().isApprox(InterpolatePose(poses[1], poses[2], s).linear(), 1e-12));
+    }
+    EXPECT_LT(worst_cubic, 1e-9);  // a parabola is reproduced exactly
+    EXPECT_GT(worst_linear, 0.1);  // a straight segment cuts the curve
+    // Exact at the poses.
+    EXPECT_LT((InterpolatePoseCubic(before, a, b, after, times[1]).translation() - poses[1].translation()).norm(), 1e-12);
+    EXPECT_LT((InterpolatePoseCubic(before, a, b, after, times[2]).translation() - poses[2].translation()).norm(), 1e-12);
+}
+
+TEST(PoseInterpolationCubic, WithoutNeighboursIsTheStraightSegment) {
+    const Eigen::Isometry3d p0 = Accelerating(0.0), p1 = Accelerating(1.0);
+    const StampedPose none, a{0.0, &p0}, b{1.0, &p1};
+    for (const double t : {0.0, 0.25, 0.5, 0.9, 1.0}) {
+        EXPECT_TRUE(InterpolatePoseCubic(none, a, b, none, t).isApprox(InterpolatePose(p0, p1, t), 1e-12)) << t;
+    }
+}
+
+}  // namespace
+}  // namespace revisit
