@@ -203,6 +203,7 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     s.Add("evaluation.min_overlap", &g.min_overlap, "", "a closure above this overlap (0.5)", Range{0, 1});
     s.Add("evaluation.max_range", &g.max_range, "m", "segments farther apart are skipped (sensor range)", Range{0.1, 10000});
     s.Add("evaluation.travel_gap_ranges", &g.travel_gap_ranges, "", "later segment >= this x max_range of travel after (2)", Range{0, 1000});
+    s.Add("evaluation.min_travel", &g.min_travel, "m", "later segment >= this much travel after; 0 = travel_gap_ranges x max_range (paper: 200)", Range{0, 1e7});
     s.Add("evaluation.tau_d", &c.predicted.max_distance, "m", "predicted scan pairs closer than this (6)", Range{0.01, 1000});
     s.Add("evaluation.planar", &c.predicted.planar, "", "distances in x, y only");
     auto& t = c.truth;

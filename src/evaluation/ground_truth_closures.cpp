@@ -103,7 +103,7 @@ GroundTruthBuilder::GroundTruthBuilder(Poses T_world_sensor, const GtClosureConf
         for (std::size_t scan = segments_[s].first_scan; scan <= segments_[s].last_scan; ++scan) segment_of_scan_[scan] = s;
 
     // Step 2 of METHOD.md section 7: candidates from the poses alone (cheap).
-    const double min_gap = config_.travel_gap_ranges * config_.max_range;
+    const double min_gap = config_.min_travel > 0.0 ? config_.min_travel : config_.travel_gap_ranges * config_.max_range;
     std::vector<std::vector<std::size_t>> later_of(num_segments);
     tbb::parallel_for(std::size_t{0}, num_segments, [&](std::size_t i) {
         const Eigen::Vector3d origin_i = T_world_sensor_[segments_[i].first_scan].translation();
@@ -182,7 +182,7 @@ std::string GroundTruthCacheKey(const Poses& T_world_sensor, const GtClosureConf
     add_bytes(&count, sizeof(count));
     for (const auto& T : T_world_sensor) add_bytes(T.matrix().data(), sizeof(double) * 16);
     const double values[] = {config.segment_length, config.voxel_size, config.min_overlap, config.max_range,
-                             config.travel_gap_ranges, static_cast<double>(config.voxel_subsample)};
+                             config.travel_gap_ranges, static_cast<double>(config.voxel_subsample), config.min_travel};
     add_bytes(values, sizeof(values));
     add_bytes(salt.data(), salt.size());
     std::ostringstream text;

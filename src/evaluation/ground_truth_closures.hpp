@@ -1,6 +1,8 @@
 #pragma once
 /// Ground-truth loop closures from reference poses and scans by volumetric overlap
 /// (METHOD.md section 7; thesis section 5.1, Eq. (5.1), the Szymkiewicz-Simpson overlap coefficient).
+/// The protocol's scale (100 m range, 200 m of travel between the two) is a car's; the settings
+/// from the data give walks and 2D lasers their own (settings/auto_settings.cpp).
 #include "core/trajectory.hpp"
 #include "evaluation/scan_pair.hpp"
 
@@ -21,6 +23,7 @@ struct GtClosureConfig {
     double min_overlap = 0.5;        ///< a segment pair is a closure when overlap > this [0..1]
     double max_range = 100.0;        ///< [m] sensor range: segments whose first poses are farther apart are skipped
     double travel_gap_ranges = 2.0;  ///< later segment starts >= this * max_range of travel after the earlier one
+    double min_travel = 0.0;         ///< [m] that travel itself when > 0 (replaces travel_gap_ranges * max_range)
     std::size_t voxel_subsample = 1; ///< keep 1 voxel in N, chosen by a hash of the voxel (the same voxels in
                                      ///< every segment, so the overlap stays an unbiased estimate); 1 = exact
 };

@@ -126,7 +126,9 @@ json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEva
                                {"accepted", closures}}},
             {"revisit_coverage", {{"radius_m", config.revisit_radius}, {"gap_m", config.revisit_gap},
                                   {"revisit_scans", e.coverage.revisit_scans}, {"covered_scans", e.coverage.covered_scans},
-                                  {"coverage", e.coverage.coverage}}},
+                                  {"coverage", e.coverage.coverage},
+                                  {"detector_covered_scans", e.detector_coverage.covered_scans},
+                                  {"detector_coverage", e.detector_coverage.coverage}}},
             {"missed_revisits", {{"overlapping_map_pairs", e.missed.overlapping_pairs}, {"found_map_pairs", e.missed.found_pairs},
                                  {"per_stage", per_stage}, {"missed", missed}}}};
 }
@@ -231,12 +233,14 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
         if (methods[k] != "proximity") continue;
         ++(e.truth.verdicts[k].is_true ? e.proximity_true : e.proximity_false);
     }
-    std::vector<std::pair<std::size_t, std::size_t>> true_pairs;
+    std::vector<std::pair<std::size_t, std::size_t>> true_pairs, true_detector_pairs;
     for (std::size_t k = 0; k < accepted.size(); ++k) {
         if (!e.truth.verdicts[k].is_true) continue;
         true_pairs.emplace_back(MapIndexOfScan(ranges, accepted[k].query_first_scan), MapIndexOfScan(ranges, accepted[k].ref_first_scan));
+        if (methods[k] != "proximity") true_detector_pairs.push_back(true_pairs.back());
     }
     e.coverage = ComputeRevisitCoverage(state.reference, ranges, true_pairs, config.truth);
+    e.detector_coverage = ComputeRevisitCoverage(state.reference, ranges, true_detector_pairs, config.truth);
     e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_matches, config.detector.min_inliers);
     WriteMetrics(run, e, VerificationJson(e, accepted, methods, config.truth));
     return e;

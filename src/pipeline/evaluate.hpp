@@ -37,6 +37,9 @@ struct RunEvaluation {
     std::size_t proximity_true = 0;   ///< of those, the proximity pass's (docs/method.md: at the end of the run)
     std::size_t proximity_false = 0;
     RevisitCoverage coverage;
+    /// The same with the detector's closures alone: what place recognition finds without the
+    /// proximity pass, which needs odometry good enough to lay the maps over each other.
+    RevisitCoverage detector_coverage;
     MissedRevisits missed;
     TrajectoryEvaluation odometry;
     TrajectoryEvaluation corrected;

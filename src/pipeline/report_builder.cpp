@@ -102,7 +102,8 @@ std::optional<RevisitFindings> ReadRevisitFindings(const nlohmann::json& metrics
         "revisit coverage: " + FormatNumber(100.0 * coverage.value("coverage", 0.0), 0) + "% of " +
             std::to_string(coverage.value("revisit_scans", 0)) + " scans that come back within " +
             FormatNumber(coverage.value("radius_m", 0.0), 1) + " m of a place passed " + FormatNumber(coverage.value("gap_m", 0.0), 0) +
-            " m of travel earlier lie in a map joined to it by a true closure",
+            " m of travel earlier lie in a map joined to it by a true closure; by the detector's closures alone (without the proximity pass): " +
+            FormatNumber(100.0 * coverage.value("detector_coverage", 0.0), 0) + "%",
         "overlapping map pairs: " + std::to_string(missed.value("overlapping_map_pairs", 0)) + ", joined by a true closure: " +
             std::to_string(missed.value("found_map_pairs", 0))};
     findings.per_stage.header = {"stage that lost it", "map pairs"};

@@ -19,7 +19,11 @@ void PrintVerification(std::ostream& out, const RunEvaluation& e) {
         out << " (of them from the proximity pass: " << e.proximity_true << " true / " << e.proximity_false << " false)";
     out << '\n';
     out << "  revisit coverage:  " << std::setprecision(0) << 100.0 * e.coverage.coverage << "% (" << e.coverage.covered_scans
-        << " of " << e.coverage.revisit_scans << " revisiting scans in a map joined by a true closure)\n";
+        << " of " << e.coverage.revisit_scans << " revisiting scans in a map joined by a true closure)";
+    if (e.proximity_true + e.proximity_false > 0) {
+        out << "; by the detector alone " << 100.0 * e.detector_coverage.coverage << "% (" << e.detector_coverage.covered_scans << ")";
+    }
+    out << '\n';
     out << "  overlapping map pairs: " << e.missed.overlapping_pairs << ", found " << e.missed.found_pairs;
     for (const auto& [stage, count] : e.missed.per_stage) out << "; " << MissStageName(stage) << ": " << count;
     out << '\n' << std::setprecision(1);
