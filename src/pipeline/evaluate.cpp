@@ -104,6 +104,13 @@ json TrajectoryJson(const TrajectoryEvaluation& t) {
             {"kitti_segments", t.kitti.num_segments}};
 }
 
+/// The proximity pass has no votes or RANSAC: those stages are left out of its column.
+json FunnelJson(const RecallFunnel& f, bool detector) {
+    json j = {{"compared", f.compared}, {"refined", f.refined}, {"accepted", f.accepted}};
+    if (detector) j["enough_matches"] = f.enough_matches, j["ransac"] = f.ransac;
+    return j;
+}
+
 json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEval>& accepted, const std::vector<std::string>& methods,
                       const ClosureTruthConfig& config) {
     json closures = json::array();
@@ -130,6 +137,7 @@ json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEva
                                   {"detector_covered_scans", e.detector_coverage.covered_scans},
                                   {"detector_coverage", e.detector_coverage.coverage}}},
             {"missed_revisits", {{"overlapping_map_pairs", e.missed.overlapping_pairs}, {"found_map_pairs", e.missed.found_pairs},
+                                 {"funnel", {{"detector", FunnelJson(e.missed.detector, true)}, {"proximity", FunnelJson(e.missed.proximity, false)}}},
                                  {"per_stage", per_stage}, {"missed", missed}}}};
 }
 

@@ -27,7 +27,21 @@ struct Outcome {
     MissStage stage = MissStage::kNotVoted;
     std::string detail;
     bool found = false;  ///< a true accepted closure joined the pair
+    int detector_level = 0;   ///< furthest funnel stage of the detector: 1 compared .. 5 accepted
+    int proximity_level = 0;  ///< the same for the proximity pass (1 registered, 4 refined, 5 accepted)
 };
+
+enum FunnelLevel { kCompared = 1, kEnoughMatches, kRansac, kRefined, kAccepted };
+
+void Reach(int& level, int reached) { level = std::max(level, reached); }
+
+void Count(RecallFunnel& funnel, int level) {
+    funnel.compared += level >= kCompared;
+    funnel.enough_matches += level >= kEnoughMatches;
+    funnel.ransac += level >= kRansac;
+    funnel.refined += level >= kRefined;
+    funnel.accepted += level >= kAccepted;
+}
 
 using MapPair = std::pair<std::size_t, std::size_t>;  ///< (later, earlier) map index
 
@@ -66,12 +80,14 @@ MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanP
         switch (c.stage) {
             case ComparisonStage::kSkippedRecent: Raise(outcome, MissStage::kSkippedRecent, ""); break;
             case ComparisonStage::kNotSelected:
+                if (c.votes > 0) Reach(outcome.detector_level, c.votes >= min_matches ? kEnoughMatches : kCompared);
                 if (c.votes < min_matches)
                     Raise(outcome, MissStage::kTooFewMatches, std::to_string(c.votes) + " votes < " + std::to_string(min_matches));
                 else
                     Raise(outcome, MissStage::kNotSelected, std::to_string(c.votes) + " votes");
                 break;
             case ComparisonStage::kCompared:
+                Reach(outcome.detector_level, c.inliers >= min_inliers ? kRansac : kEnoughMatches);
                 // At or above gamma the closure's own record says what happened next.
                 if (c.inliers < min_inliers)
                     Raise(outcome, MissStage::kTooFewInliers, std::to_string(c.votes) + " votes, " + std::to_string(c.inliers) +
@@ -89,6 +105,12 @@ MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanP
         if (!key || !overlapping.count(*key)) continue;
         Outcome& outcome = outcomes[*key];
         const std::string counts = std::to_string(c.num_votes) + " votes, " + std::to_string(c.num_inliers) + " inliers";
+        const bool proximity = record.method == "proximity";
+        int& level = proximity ? outcome.proximity_level : outcome.detector_level;
+        Reach(level, kCompared);
+        if (!proximity && record.refined) Reach(level, kRansac);
+        if (record.refined && record.refinement.accepted) Reach(level, kRefined);
+        if (is_true) Reach(level, kAccepted);
         if (!record.refined) Raise(outcome, MissStage::kTooFewInliers, counts);
         else if (!record.refinement.accepted) Raise(outcome, MissStage::kRefinementRejected, record.reason);
         else if (!record.accepted && record.reason.find("PCM") != std::string::npos)
@@ -102,6 +124,8 @@ MissedRevisits FindMissedRevisits(const RunState& state, const std::vector<ScanP
     result.overlapping_pairs = overlapping.size();
     for (const auto& [key, gt_pairs] : overlapping) {
         const Outcome outcome = outcomes.count(key) ? outcomes[key] : Outcome{};
+        Count(result.detector, outcome.detector_level);
+        Count(result.proximity, outcome.proximity_level);
         if (outcome.found) {
             ++result.found_pairs;
             continue;

@@ -33,9 +33,22 @@ struct MissedRevisit {
     std::string detail;  ///< votes, inliers or the rejection reason
 };
 
+/// Recall as a funnel: of the overlapping map pairs, how many reached each stage of one way of
+/// finding closures. The detector passes every stage; the proximity pass has no votes or RANSAC
+/// (it registers the pairs the corrected poses lay over each other), so only `compared`,
+/// `refined` and `accepted` count for it.
+struct RecallFunnel {
+    std::size_t compared = 0;        ///< detector: the tree voted for the pair; proximity: registered
+    std::size_t enough_matches = 0;  ///< detector: votes >= min_matches
+    std::size_t ransac = 0;          ///< detector: RANSAC found >= gamma inliers
+    std::size_t refined = 0;         ///< the 3D refinement accepted the pair
+    std::size_t accepted = 0;        ///< a true closure of this way joins the pair after PCM and the graph
+};
+
 struct MissedRevisits {
     std::size_t overlapping_pairs = 0;  ///< map pairs with ground-truth scan pairs between them
     std::size_t found_pairs = 0;        ///< of those, joined by a true accepted closure
+    RecallFunnel detector, proximity;
     std::map<MissStage, std::size_t> per_stage;
     std::vector<MissedRevisit> missed;  ///< sorted by query, then reference map
 };

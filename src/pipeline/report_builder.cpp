@@ -106,6 +106,20 @@ std::optional<RevisitFindings> ReadRevisitFindings(const nlohmann::json& metrics
             FormatNumber(100.0 * coverage.value("detector_coverage", 0.0), 0) + "%",
         "overlapping map pairs: " + std::to_string(missed.value("overlapping_map_pairs", 0)) + ", joined by a true closure: " +
             std::to_string(missed.value("found_map_pairs", 0))};
+    if (missed.contains("funnel")) {
+        const auto& detector = missed["funnel"]["detector"];
+        const auto& proximity = missed["funnel"]["proximity"];
+        findings.funnel.header = {"stage (of " + std::to_string(missed.value("overlapping_map_pairs", 0)) + " overlapping map pairs)",
+                                  "detector", "proximity pass"};
+        const auto row = [&](const std::string& stage, const char* key, bool both) {
+            findings.funnel.rows.push_back({stage, detector[key].dump(), both ? proximity[key].dump() : "-"});
+        };
+        row("compared (voted for / registered)", "compared", true);
+        row("enough matches", "enough_matches", false);
+        row("RANSAC inliers", "ransac", false);
+        row("refinement accepted", "refined", true);
+        row("accepted, true", "accepted", true);
+    }
     findings.per_stage.header = {"stage that lost it", "map pairs"};
     for (const auto& stage : missed["per_stage"])
         findings.per_stage.rows.push_back({stage.value("stage", "?"), stage["map_pairs"].dump()});

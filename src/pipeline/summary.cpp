@@ -26,7 +26,15 @@ void PrintVerification(std::ostream& out, const RunEvaluation& e) {
     out << '\n';
     out << "  overlapping map pairs: " << e.missed.overlapping_pairs << ", found " << e.missed.found_pairs;
     for (const auto& [stage, count] : e.missed.per_stage) out << "; " << MissStageName(stage) << ": " << count;
-    out << '\n' << std::setprecision(1);
+    out << '\n';
+    if (e.missed.overlapping_pairs > 0) {
+        const RecallFunnel& d = e.missed.detector;
+        const RecallFunnel& p = e.missed.proximity;
+        out << "  recall funnel (map pairs): detector " << d.compared << " voted for, " << d.enough_matches << " enough matches, "
+            << d.ransac << " RANSAC, " << d.refined << " refined, " << d.accepted << " accepted true; proximity pass "
+            << p.compared << " registered, " << p.refined << " refined, " << p.accepted << " accepted true\n";
+    }
+    out << std::setprecision(1);
 }
 
 }  // namespace

@@ -69,6 +69,7 @@ struct TextTable {
 /// "Were my revisits found?", from the evaluation (already formatted).
 struct RevisitFindings {
     std::vector<std::string> lines;  ///< true / false counts, revisit coverage
+    TextTable funnel;                ///< overlapping map pairs reaching each stage, detector and proximity pass
     TextTable per_stage;             ///< missed map pairs per stage
     TextTable missed;                ///< one row per missed map pair
 };

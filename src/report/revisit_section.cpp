@@ -7,6 +7,12 @@ void AddRevisitSection(HtmlPage& index, const ReportInput& input) {
     const RevisitFindings& findings = *input.revisits;
     index.Heading("Were the revisits found?", 2, "revisits");
     if (!findings.lines.empty()) index.List(findings.lines);
+    if (!findings.funnel.rows.empty()) {
+        index.Paragraph("Recall as a funnel: of the map pairs that the reference poses say overlap, how many each way of "
+                        "finding closures carried to each stage (the proximity pass registers the pairs the corrected poses "
+                        "lay over each other: it has no votes or RANSAC).");
+        index.Table(findings.funnel.header, findings.funnel.rows);
+    }
     if (!findings.per_stage.rows.empty()) {
         index.Paragraph("Map pairs that the reference poses say overlap but no true accepted closure joined, by the "
                         "stage that lost them:");
