@@ -68,6 +68,29 @@ TEST(MissedRevisits, NamesTheStageThatLostEachOverlappingPair) {
     EXPECT_EQ(stage_of(9, 3), "never compared: not selected (top half by votes)");
     EXPECT_EQ(result.per_stage.at(MissStage::kTooFewInliers), 1u);
 
+    // The funnel: each pair counts at every stage up to the furthest it reached.
+    EXPECT_EQ(result.detector.compared, 6u);        // every pair with a vote
+    EXPECT_EQ(result.detector.enough_matches, 5u);  // but 5 -> 0 (4 votes)
+    EXPECT_EQ(result.detector.ransac, 3u);          // 7 -> 2, 8 -> 3, 9 -> 4
+    EXPECT_EQ(result.detector.refined, 2u);         // 8 -> 3, 9 -> 4
+    EXPECT_EQ(result.detector.accepted, 1u);        // 9 -> 4
+    EXPECT_EQ(result.proximity.compared, 0u);
+    {
+        // The proximity pass joins 9 -> 1, which the detector never compared: its own column.
+        RunState with_proximity = state;
+        ClosureRecord record = Record(9, 1, true, true, true, "");
+        record.method = "proximity";
+        with_proximity.closures.push_back(record);
+        ClosureTruth both = truth;
+        both.verdicts.push_back(ClosureVerdict{true, {}});
+        const MissedRevisits joined = FindMissedRevisits(with_proximity, gt, both, 10, 10);
+        EXPECT_EQ(joined.found_pairs, 2u);
+        EXPECT_EQ(joined.detector.accepted, 1u);
+        EXPECT_EQ(joined.proximity.compared, 1u);
+        EXPECT_EQ(joined.proximity.refined, 1u);
+        EXPECT_EQ(joined.proximity.accepted, 1u);
+    }
+
     // A false accepted closure does not find its pair.
     truth.verdicts[0].is_true = false;
     EXPECT_EQ(FindMissedRevisits(state, gt, truth, 10, 10).found_pairs, 0u);
