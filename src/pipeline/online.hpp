@@ -66,6 +66,9 @@ class ClosurePipeline {
     /// Before the final optimization: with few consistent closures, the odometry's own overlays check them.
     void CheckAgainstOdometryOverlays();
     double FootprintCell() const;  ///< [m] ground cells of the maps' footprints
+    /// Whether map `query` returns to where its predecessor went under the pose estimate `T_world_map`:
+    /// a scan of each within a tenth of a map's length of the other, a map's length apart in travel.
+    bool RevisitsPredecessor(int query, const Poses& T_world_map) const;
     /// Why verified closure k (of the consistency check) was dropped against the odometry alone.
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
@@ -88,6 +91,9 @@ class ClosurePipeline {
     std::vector<ClosureRecord> closures_;
     std::vector<MapComparison> comparisons_;
     std::vector<std::vector<Eigen::Vector2d>> footprints_;  ///< per map: its ground cells (MapFootprint)
+    /// Per map (2D lasers): its scans' positions in the map frame and their travel [m] (RevisitsPredecessor).
+    std::vector<std::vector<Eigen::Vector3d>> scan_positions_;
+    std::vector<std::vector<double>> scan_travel_;
     Poses nodes_;            ///< odometry map origins
     std::vector<double> node_travel_;  ///< [m] travel at each map origin
     std::vector<Eigen::Vector3d> node_position_integral_;  ///< the consistency check's leg means (AppendPositionIntegral)
