@@ -11,6 +11,7 @@
 #include "core/voxel.hpp"
 #include "optimization/map_overlap.hpp"
 #include "optimization/trajectory_correction.hpp"
+#include "pipeline/scan_trail.hpp"
 
 namespace revisit {
 namespace {
@@ -107,18 +108,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     const auto stored = Downsampled(map.points, config_.output.map_voxel);
     store_->Put(map.id, stored);
     if (config_.proximity.enabled) footprints_.push_back(MapFootprint(stored, FootprintCell()));
-    if (config_.proximity.enabled && ConsecutiveRevisitsChecked(config_)) {
-        std::vector<Eigen::Vector3d> positions;
-        std::vector<double> travel;
-        double along = map.travel_start;
-        for (const auto& T_map_scan : map.T_map_scan) {
-            if (!positions.empty()) along += (T_map_scan.translation() - positions.back()).norm();
-            positions.push_back(T_map_scan.translation());
-            travel.push_back(along);
-        }
-        scan_positions_.push_back(std::move(positions));
-        scan_travel_.push_back(std::move(travel));
-    }
+    if (config_.proximity.enabled && ConsecutiveRevisitsChecked(config_)) trails_.push_back(MakeScanTrail(map.T_map_scan, map.travel_start));
     Time("map_store", MillisecondsSince(start));
 
     start = std::chrono::steady_clock::now();
@@ -184,17 +174,9 @@ double ClosurePipeline::FootprintCell() const {
 
 bool ClosurePipeline::RevisitsPredecessor(int query, const Poses& T_world_map) const {
     const auto q = std::size_t(query);
-    if (query < 1 || q >= scan_positions_.size() || q >= T_world_map.size()) return false;
-    const double gap = config_.local_map.split_distance;
-    const double radius = kConsecutiveRevisitShare * config_.local_map.split_distance;
-    const auto& ref_positions = scan_positions_[q - 1];
-    const auto& ref_travel = scan_travel_[q - 1];
-    for (std::size_t j = 0; j < scan_positions_[q].size(); ++j) {
-        const Eigen::Vector3d p = T_world_map[q] * scan_positions_[q][j];
-        for (std::size_t i = 0; i < ref_positions.size() && scan_travel_[q][j] - ref_travel[i] >= gap; ++i)
-            if ((T_world_map[q - 1] * ref_positions[i] - p).norm() <= radius) return true;
-    }
-    return false;
+    if (query < 1 || q >= trails_.size() || q >= T_world_map.size()) return false;
+    const double length = config_.local_map.split_distance;
+    return TrailRevisits(trails_[q - 1], T_world_map[q - 1], trails_[q], T_world_map[q], kConsecutiveRevisitShare * length, length);
 }
 
 void ClosurePipeline::CheckAgainstOdometryOverlays() {

@@ -14,6 +14,7 @@
 #include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
 #include "config/config.hpp"
+#include "pipeline/scan_trail.hpp"
 #include "runfolder/run_state.hpp"
 
 namespace revisit {
@@ -91,9 +92,7 @@ class ClosurePipeline {
     std::vector<ClosureRecord> closures_;
     std::vector<MapComparison> comparisons_;
     std::vector<std::vector<Eigen::Vector2d>> footprints_;  ///< per map: its ground cells (MapFootprint)
-    /// Per map (2D lasers): its scans' positions in the map frame and their travel [m] (RevisitsPredecessor).
-    std::vector<std::vector<Eigen::Vector3d>> scan_positions_;
-    std::vector<std::vector<double>> scan_travel_;
+    std::vector<ScanTrail> trails_;  ///< per map (2D lasers): where its scans were (RevisitsPredecessor)
     Poses nodes_;            ///< odometry map origins
     std::vector<double> node_travel_;  ///< [m] travel at each map origin
     std::vector<Eigen::Vector3d> node_position_integral_;  ///< the consistency check's leg means (AppendPositionIntegral)
