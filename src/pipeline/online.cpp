@@ -11,6 +11,7 @@
 #include "core/voxel.hpp"
 #include "optimization/map_overlap.hpp"
 #include "optimization/trajectory_correction.hpp"
+#include "pipeline/scan_trail.hpp"
 
 namespace revisit {
 namespace {
@@ -43,6 +44,14 @@ std::vector<Eigen::Vector3f> Downsampled(const std::vector<Eigen::Vector3f>& poi
     for (std::size_t i = 0; i < kept.size(); ++i) out[i] = kept[i].cast<float>();
     return out;
 }
+
+/// Consecutive maps revisit when a scan of each lies within this share of a map's length of the other,
+/// a map's length apart in travel (the pass back along a corridor, a metre or two beside the pass out;
+/// the boundary the two maps share is less than a map's length apart). Only where maps carry nothing
+/// over and register in the plane: 2D lasers (the 3D paths keep their consecutive-map rule).
+constexpr double kConsecutiveRevisitShare = 0.1;
+
+bool ConsecutiveRevisitsChecked(const PipelineConfig& config) { return config.odometry.planar && !config.local_map.carry_over; }
 
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -99,6 +108,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     const auto stored = Downsampled(map.points, config_.output.map_voxel);
     store_->Put(map.id, stored);
     if (config_.proximity.enabled) footprints_.push_back(MapFootprint(stored, FootprintCell()));
+    if (config_.proximity.enabled && ConsecutiveRevisitsChecked(config_)) trails_.push_back(MakeScanTrail(map.T_map_scan, map.travel_start));
     Time("map_store", MillisecondsSince(start));
 
     start = std::chrono::steady_clock::now();
@@ -162,6 +172,13 @@ double ClosurePipeline::FootprintCell() const {
     return std::max(config_.local_map.split_distance / 20.0, config_.output.map_voxel);
 }
 
+bool ClosurePipeline::RevisitsPredecessor(int query, const Poses& T_world_map) const {
+    const auto q = std::size_t(query);
+    if (query < 1 || q >= trails_.size() || q >= T_world_map.size()) return false;
+    const double length = config_.local_map.split_distance;
+    return TrailRevisits(trails_[q - 1], T_world_map[q - 1], trails_[q], T_world_map[q], kConsecutiveRevisitShare * length, length);
+}
+
 void ClosurePipeline::CheckAgainstOdometryOverlays() {
     const int below = config_.proximity.odometry_check_below;
     if (!config_.proximity.enabled || config_.proximity.rounds <= 0 || below <= 0 || !config_.consistency.enabled) return;
@@ -203,10 +220,15 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
     confirm.max_correction_rotation =
         std::min(confirm.max_correction_rotation, config_.consistency.closure_sigma_rotation_deg * M_PI / 180.0);
     confirm.vertical_search = 0.0;
-    // Consecutive maps are joined by the odometry and share the carried-over points: not a revisit.
+    // Consecutive maps are joined by the odometry and share their boundary (and the carried-over points):
+    // not a revisit. But a 2D laser's maps (no carry-over) along a corridor walked there and back hold
+    // both passes, and nothing else joins them: those pairs are registered (RevisitsPredecessor).
     const Poses& estimate = from_odometry ? nodes_ : corrected_nodes_;
     const auto pairs = PredictOverlaps(footprints_, estimate, FootprintCell(), p.min_overlap, p.max_per_map,
-                                       [&](int query, int ref) { return query == ref + 1 || done.count({query, ref}) > 0; });
+                                       [&](int query, int ref) {
+                                           if (done.count({query, ref}) > 0) return true;
+                                           return query == ref + 1 && !RevisitsPredecessor(query, estimate);
+                                       });
     std::size_t verified = 0;
     std::vector<Eigen::Vector3f> query_points;  // pairs come grouped by query map: read and prepare each once
     std::optional<RefinementQuery> prepared;

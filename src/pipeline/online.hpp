@@ -14,6 +14,7 @@
 #include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
 #include "config/config.hpp"
+#include "pipeline/scan_trail.hpp"
 #include "runfolder/run_state.hpp"
 
 namespace revisit {
@@ -66,6 +67,9 @@ class ClosurePipeline {
     /// Before the final optimization: with few consistent closures, the odometry's own overlays check them.
     void CheckAgainstOdometryOverlays();
     double FootprintCell() const;  ///< [m] ground cells of the maps' footprints
+    /// Whether map `query` returns to where its predecessor went under the pose estimate `T_world_map`:
+    /// a scan of each within a tenth of a map's length of the other, a map's length apart in travel.
+    bool RevisitsPredecessor(int query, const Poses& T_world_map) const;
     /// Why verified closure k (of the consistency check) was dropped against the odometry alone.
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
@@ -88,6 +92,7 @@ class ClosurePipeline {
     std::vector<ClosureRecord> closures_;
     std::vector<MapComparison> comparisons_;
     std::vector<std::vector<Eigen::Vector2d>> footprints_;  ///< per map: its ground cells (MapFootprint)
+    std::vector<ScanTrail> trails_;  ///< per map (2D lasers): where its scans were (RevisitsPredecessor)
     Poses nodes_;            ///< odometry map origins
     std::vector<double> node_travel_;  ///< [m] travel at each map origin
     std::vector<Eigen::Vector3d> node_position_integral_;  ///< the consistency check's leg means (AppendPositionIntegral)
