@@ -1,5 +1,7 @@
 /// `revisit simulate --preset NAME --out DIR`: a synthetic, ground-truthed sequence.
+#include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
 #include "pipeline/progress.hpp"
@@ -15,6 +17,8 @@ struct SimulateOptions {
     std::size_t max_scans = 0;
     std::string trajectory;
     int session = 0;
+    std::optional<double> scale_bias;     ///< odometry prior: relative error of travelled distance
+    std::optional<double> yaw_bias_deg;   ///< [deg/s] odometry prior: initial yaw-rate bias
     bool force = false;
     bool quiet = false;
     bool list = false;
@@ -30,6 +34,8 @@ int RunSimulate(const SimulateOptions& options) {
     if (options.seed != 0) config.seed = options.seed;
     if (options.max_scans != 0) config.max_scans = options.max_scans;
     config.session = options.session;
+    if (options.scale_bias) config.odometry.speed_scale_bias = *options.scale_bias;
+    if (options.yaw_bias_deg) config.odometry.yaw_rate_bias = *options.yaw_bias_deg * M_PI / 180.0;
     if (!options.trajectory.empty()) {
         // A street world built along the given route, with the preset's sensor and city densities.
         config.world = WorldKind::kAroundTrajectory;
@@ -56,12 +62,14 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
         "Worlds (city, highway, campus, indoor), routes with revisits and sensor models, deterministic\n"
         "from the seed. OUT is a KITTI folder (velodyne/*.bin, poses.txt ground truth in the sensor frame,\n"
         "times.txt, identity calib.txt, sim.yaml with every parameter) or, ending in .rawlog/.rawlog.gz,\n"
-        "an MRPT rawlog with ground truth and a drifting odometry prior.\n"
+        "an MRPT rawlog with ground truth and a drifting odometry prior (--odometry-scale-bias,\n"
+        "--odometry-yaw-bias set its drift: a strong one leaves the loops to place recognition).\n"
         "Examples:\n"
         "  revisit simulate --preset demo --out data/demo\n"
         "  revisit simulate --preset indoor-2d-360 --out indoor.rawlog.gz --seed 7\n"
         "  revisit simulate --preset city-64 --trajectory ../shared/data/kitti_gt_poses/00.txt --out sim00\n"
         "  revisit simulate --preset demo --session 1 --out data/demo-s1   # same city, another route\n"
+        "  revisit simulate --preset demo --out drift.rawlog --odometry-scale-bias 0.05 --odometry-yaw-bias 0.5\n"
         "  revisit simulate --list-presets");
     cmd->add_option("--preset", options->preset, "world + sensor preset (see --list-presets)")->capture_default_str();
     cmd->add_option("--out", options->out, "output KITTI folder or .rawlog[.gz] file");
@@ -75,6 +83,12 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
                     "another session in the same world: K > 0 drives another route (same world seed, route seed "
                     "derived from seed and K)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--odometry-scale-bias", options->scale_bias,
+                    "rawlog odometry prior: relative error of the travelled distance (default: the preset's, 0.01-0.02; 0.05 drifts like poor wheel odometry)")
+        ->check(CLI::Range(-0.5, 0.5));
+    cmd->add_option("--odometry-yaw-bias", options->yaw_bias_deg,
+                    "rawlog odometry prior: initial yaw-rate bias [deg/s] (default: the preset's, 0.11-0.29; it also random-walks)")
+        ->check(CLI::Range(-10.0, 10.0));
     cmd->add_flag("--force", options->force, "write into an existing non-empty folder / overwrite a file");
     cmd->add_flag("--quiet", options->quiet, "no progress output");
     cmd->add_flag("--list-presets", options->list, "print the preset names and exit");

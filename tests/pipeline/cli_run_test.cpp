@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "cli.hpp"
+#include "read_all.hpp"
 #include "config/config.hpp"
 #include "runfolder/run_files.hpp"
 #include "sim_dataset.hpp"
@@ -145,6 +146,31 @@ TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
     unsetenv("REVISIT_SHARE_DIR");
     EXPECT_EQ(no_templates.exit_code, 1) << no_templates.output;
     EXPECT_NE(no_templates.output.find(nowhere), std::string::npos) << no_templates.output;
+}
+
+TEST(CliSimulate, StrongOdometryDriftIsWrittenIntoTheRawlogPrior) {
+    test::TempDir dir;
+    const auto final_error = [](const fs::path& rawlog) {
+        const auto scans = test::ReadAllScans(rawlog);
+        if (scans.empty() || !scans.back().T_odom_sensor || !scans.back().T_world_sensor) return -1.0;
+        // Both start at the first ground-truth pose: the last scan shows the accumulated drift.
+        return (scans.back().T_odom_sensor->translation() - scans.back().T_world_sensor->translation()).norm();
+    };
+    const std::string common = "simulate --preset indoor-2d-360 --scans 80 --quiet --out ";
+    const auto plain = RunCli(common + Quote((dir / "plain.rawlog").string()));
+    ASSERT_EQ(plain.exit_code, 0) << plain.output;
+    const auto strong = RunCli(common + Quote((dir / "strong.rawlog").string()) + " --odometry-scale-bias 0.1 --odometry-yaw-bias 2");
+    ASSERT_EQ(strong.exit_code, 0) << strong.output;
+    std::ifstream yaml(dir / "strong.rawlog.sim.yaml");
+    const std::string text((std::istreambuf_iterator<char>(yaml)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("speed_scale_bias: 0.1,"), std::string::npos) << text;
+    const double plain_error = final_error(dir / "plain.rawlog"), strong_error = final_error(dir / "strong.rawlog");
+    ASSERT_GE(plain_error, 0.0);
+    EXPECT_GT(strong_error, 2.0 * plain_error) << plain_error << " m vs " << strong_error << " m";
+    // Out of range: a clear error, nothing written.
+    const auto bad = RunCli(common + Quote((dir / "bad.rawlog").string()) + " --odometry-scale-bias 0.9");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_FALSE(fs::exists(dir / "bad.rawlog"));
 }
 }  // namespace
 }  // namespace revisit
