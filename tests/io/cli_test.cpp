@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "io/reader.hpp"
+#include "read_all.hpp"
 #include "test_data.hpp"
 
 namespace revisit {
@@ -96,6 +97,61 @@ TEST(Cli, ConvertRefusesToOverwriteUnlessForced) {
     EXPECT_EQ(forced.exit_code, 0) << forced.output;
     EXPECT_TRUE(std::filesystem::exists(out / "precious.txt"));
     EXPECT_EQ(OpenDataset(out)->Info().num_scans, 37u);
+}
+
+TEST(Cli, ConvertEachRecordingToKittiAndRawlog) {
+    // The shared walk as ROS 1 bag, MCAP and rosbag2 folder: each converts to a KITTI folder with the
+    // walk's very point bytes, its reference poses and its stamps, and to a rawlog with the same scans.
+    const auto walk = test::SharedData("livox_handheld_walk");
+    const auto bags = test::SharedData("bags");
+    REVISIT_REQUIRE_DATA(walk);
+    REVISIT_REQUIRE_DATA(bags);
+    const auto original = test::ReadAllScans(walk);
+    ASSERT_EQ(original.size(), 266u);
+    test::TempDir dir;
+    for (const char* name : {"livox_walk.bag", "livox_walk.mcap", "livox_walk_db3"}) {
+        const auto kitti = dir / (std::string(name) + ".kitti");
+        const auto rawlog = dir / (std::string(name) + ".rawlog");
+        const auto to_kitti = RunCli("convert " + Quote((bags / name).string()) + " " + Quote(kitti.string()));
+        ASSERT_EQ(to_kitti.exit_code, 0) << to_kitti.output;
+        for (const char* bin : {"000000.bin", "000133.bin", "000265.bin"}) {
+            std::ifstream a(walk / "velodyne" / bin, std::ios::binary), b(kitti / "velodyne" / bin, std::ios::binary);
+            const std::string bytes_a((std::istreambuf_iterator<char>(a)), {}), bytes_b((std::istreambuf_iterator<char>(b)), {});
+            EXPECT_TRUE(!bytes_a.empty() && bytes_a == bytes_b) << name << ": " << bin << " differs";
+        }
+        const auto converted = test::ReadAllScans(kitti);
+        ASSERT_EQ(converted.size(), original.size()) << name;
+        for (std::size_t i = 0; i < original.size(); i += 19) {
+            ASSERT_TRUE(converted[i].T_world_sensor) << name << " scan " << i;
+            EXPECT_LT((converted[i].T_world_sensor->matrix() - original[i].T_world_sensor->matrix()).norm(), 1e-5) << name << " scan " << i;
+            // The recording's stamps are absolute, the walk's times.txt starts at 0.
+            EXPECT_NEAR(converted[i].timestamp - converted[0].timestamp, original[i].timestamp - original[0].timestamp, 1e-6);
+        }
+        const auto to_rawlog = RunCli("convert " + Quote((bags / name).string()) + " " + Quote(rawlog.string()));
+        ASSERT_EQ(to_rawlog.exit_code, 0) << to_rawlog.output;
+        const auto from_rawlog = test::ReadAllScans(rawlog);
+        ASSERT_EQ(from_rawlog.size(), original.size()) << name;
+        EXPECT_EQ(from_rawlog[133].points.size(), original[133].points.size()) << name;
+    }
+}
+
+TEST(Cli, ConvertCarmenLogToKittiGivesTheSharedConversionsScans) {
+    const auto log = test::SharedData("carmen/seattle-corrected.log.gz");
+    const auto reference = test::SharedData("carmen_kitti/seattle");
+    REVISIT_REQUIRE_DATA(log);
+    REVISIT_REQUIRE_DATA(reference);
+    test::TempDir dir;
+    const auto out = dir / "seattle";
+    const auto converted = RunCli("convert " + Quote(log.string()) + " " + Quote(out.string()));
+    ASSERT_EQ(converted.exit_code, 0) << converted.output;
+    const auto ours = test::ReadAllScans(out), theirs = test::ReadAllScans(reference);
+    ASSERT_EQ(ours.size(), theirs.size());
+    for (std::size_t i = 0; i < ours.size(); i += 37) {
+        ASSERT_EQ(ours[i].points.size(), theirs[i].points.size()) << "scan " << i;
+        for (std::size_t k = 0; k < ours[i].points.size(); k += 17) {
+            EXPECT_LT((ours[i].points[k] - theirs[i].points[k]).norm(), 1e-4) << "scan " << i << " point " << k;
+        }
+    }
 }
 
 }  // namespace
