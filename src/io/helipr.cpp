@@ -1,0 +1,138 @@
+#include "io/helipr.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+#include "core/error.hpp"
+#include "io/stamped_layout.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+namespace {
+
+/// The published Aeva files after this stamp [ns] carry a float32 intensity after line_index.
+constexpr std::uint64_t kAevaIntensitySince = 1691936557946849179ull;
+
+/// A sensor's packed point: its size, where x, y, z (float32) and the intensity and time fields are.
+struct PointLayout {
+    const char* sensor;
+    std::size_t bytes;
+    const char* fields;
+    int intensity_at;         ///< byte offset of the intensity, -1: none
+    bool intensity_is_u8;     ///< uint8 (Livox reflectivity) instead of float32
+    int time_at;              ///< byte offset of the per-point time
+    char time_type;           ///< 'u' uint32 ns, 'i' int32 ns, 'f' float32 s
+};
+
+constexpr PointLayout kOuster{"Ouster", 26, "float32 x, y, z, intensity, uint32 t [ns], uint16 reflectivity, ring, ambient", 12, false, 16, 'u'};
+constexpr PointLayout kVelodyne{"Velodyne", 22, "float32 x, y, z, intensity, uint16 ring, float32 time [s]", 12, false, 18, 'f'};
+constexpr PointLayout kAvia{"Avia", 19, "float32 x, y, z, uint8 reflectivity, tag, line, uint32 offset_time [ns]", 12, true, 15, 'u'};
+constexpr PointLayout kAeva{"Aeva", 29, "float32 x, y, z, reflectivity, velocity, int32 time_offset_ns, uint8 line_index, float32 intensity", 25, false, 20, 'i'};
+constexpr PointLayout kAevaEarly{"Aeva", 25, "float32 x, y, z, reflectivity, velocity, int32 time_offset_ns, uint8 line_index", 12, false, 20, 'i'};
+constexpr const PointLayout* kSensors[] = {&kOuster, &kVelodyne, &kAvia, &kAeva};
+
+const PointLayout& LayoutOf(const fs::path& file, const std::string& sensor) {
+    if (sensor == "Aeva") {
+        const auto stamp = DigitStamp(file.stem().string(), 1);
+        return stamp && *stamp <= kAevaIntensitySince ? kAevaEarly : kAeva;
+    }
+    for (const PointLayout* layout : kSensors) {
+        if (sensor == layout->sensor) return *layout;
+    }
+    throw DatasetError(file, "unknown HeLiPR sensor '" + sensor + "' (Ouster, Velodyne, Avia or Aeva)");
+}
+
+template <typename T>
+T Field(const char* record, int offset) {
+    T value;
+    std::memcpy(&value, record + offset, sizeof value);  // little-endian, as the host
+    return value;
+}
+
+CloudData LoadOuster(const fs::path& file) { return LoadHeLiPRBin(file, "Ouster"); }
+CloudData LoadVelodyne(const fs::path& file) { return LoadHeLiPRBin(file, "Velodyne"); }
+CloudData LoadAvia(const fs::path& file) { return LoadHeLiPRBin(file, "Avia"); }
+CloudData LoadAeva(const fs::path& file) { return LoadHeLiPRBin(file, "Aeva"); }
+
+std::optional<std::uint64_t> NanosecondStem(const std::string& stem) { return DigitStamp(stem, 1); }
+
+/// ns x y z qx qy qz qw, space-separated, in a global frame: moved so the first position is the origin.
+Trajectory ReadHeLiPRGroundTruth(const fs::path& file) {
+    PoseTable table;
+    table.lines = {8, "HeLiPR ground truth (ns x y z qx qy qz qw)"};
+    table.move_to_first_position = true;
+    table.to_pose = [&file](const std::vector<double>& v, std::size_t line) {
+        const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+        return std::make_pair(v[0] * 1e-9, CleanPose(q, Eigen::Vector3d(v[1], v[2], v[3]), file, line));
+    };
+    return ReadPoseTable(file, table);
+}
+
+std::string ChosenSensor(const fs::path& root, const std::string& wanted) {
+    std::string lower = wanted;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::string present;
+    for (const PointLayout* layout : kSensors) {
+        std::string name = layout->sensor;
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+        const bool here = fs::is_directory(root / "LiDAR" / layout->sensor);
+        if (here) present += std::string(present.empty() ? "" : ", ") + layout->sensor;
+        if (here && (lower.empty() || lower == name)) return layout->sensor;
+    }
+    throw DatasetError(root / "LiDAR", "no LiDAR/" + (wanted.empty() ? std::string("<sensor>") : wanted) +
+                                           " folder; the sensors here: " + (present.empty() ? "none" : present) +
+                                           " (choose one with --sensor)");
+}
+
+}  // namespace
+
+bool IsHeLiPRFolder(const fs::path& path) {
+    return std::any_of(std::begin(kSensors), std::end(kSensors),
+                       [&path](const PointLayout* layout) { return HasFileWithExtension(path / "LiDAR" / layout->sensor, ".bin"); });
+}
+
+CloudData LoadHeLiPRBin(const fs::path& file, const std::string& sensor) {
+    const PointLayout& layout = LayoutOf(file, sensor);
+    const std::string data = ReadPointRecords(file, layout.bytes, std::string("HeLiPR ") + layout.sensor + ": " + layout.fields);
+    const std::size_t n = data.size() / layout.bytes;
+    CloudData cloud;
+    cloud.has_intensity = layout.intensity_at >= 0;
+    cloud.has_time = true;
+    cloud.points.reserve(n);
+    if (cloud.has_intensity) cloud.intensities.reserve(n);
+    cloud.point_times.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const char* record = data.data() + i * layout.bytes;
+        const float intensity = layout.intensity_at < 0 ? 0.f
+                                : layout.intensity_is_u8 ? static_cast<float>(Field<std::uint8_t>(record, layout.intensity_at))
+                                                         : Field<float>(record, layout.intensity_at);
+        const float time = layout.time_type == 'f' ? Field<float>(record, layout.time_at)
+                           : layout.time_type == 'i' ? static_cast<float>(Field<std::int32_t>(record, layout.time_at) * 1e-9)
+                                                     : static_cast<float>(Field<std::uint32_t>(record, layout.time_at) * 1e-9);
+        cloud.Add(Field<float>(record, 0), Field<float>(record, 4), Field<float>(record, 8), intensity, time);
+    }
+    return cloud;
+}
+
+std::unique_ptr<Reader> OpenHeLiPR(const fs::path& path, const ReaderOptions& options) {
+    const std::string sensor = ChosenSensor(path, options.sensor_label);
+    StampedLayout layout;
+    layout.info.format = "helipr";
+    layout.info.path = path;
+    layout.scans = ListStampedFiles(path / "LiDAR" / sensor, ".bin", &NanosecondStem, "named by their nanosecond time stamp (digits only)");
+    layout.loader = sensor == "Ouster" ? &LoadOuster : sensor == "Velodyne" ? &LoadVelodyne : sensor == "Avia" ? &LoadAvia : &LoadAeva;
+    layout.label = sensor;
+    std::transform(layout.label.begin(), layout.label.end(), layout.label.begin(), [](unsigned char c) { return std::toupper(c); });
+    for (const fs::path& candidate : {path / "LiDAR_GT" / (sensor + "_gt.txt"), path / "LiDAR_GT" / ("global_" + sensor + "_gt.txt"),
+                                      path / (sensor + "_gt.txt")}) {
+        if (fs::is_regular_file(candidate)) {
+            layout.reference_file = candidate;
+            break;
+        }
+    }
+    layout.read_reference = &ReadHeLiPRGroundTruth;
+    return OpenStampedLayout(std::move(layout), options);
+}
+
+}  // namespace revisit
