@@ -85,6 +85,32 @@ std::string ChosenSensor(const fs::path& root, const std::string& wanted) {
                                            " (choose one with --sensor)");
 }
 
+/// Each sensor folder as `revisit info` lists a recording's streams: its record layout, file count,
+/// rate from the stamps of the names, and whether it is the one read.
+std::vector<TopicSummary> SensorFolders(const fs::path& root, const std::string& chosen) {
+    std::vector<TopicSummary> folders;
+    for (const PointLayout* layout : kSensors) {
+        const fs::path folder = root / "LiDAR" / layout->sensor;
+        std::error_code ec;
+        if (!fs::is_directory(folder, ec)) continue;
+        TopicSummary summary;
+        summary.name = "LiDAR/" + std::string(layout->sensor);
+        summary.type = (layout == &kAeva ? std::string("25/29") : std::to_string(layout->bytes)) + "-byte " + layout->sensor + " points";
+        std::uint64_t first = UINT64_MAX, last = 0;
+        for (const auto& entry : fs::directory_iterator(folder, ec)) {
+            const auto stamp = entry.path().extension() == ".bin" ? DigitStamp(entry.path().stem().string(), 1) : std::nullopt;
+            if (!stamp) continue;
+            ++summary.messages;
+            first = std::min(first, *stamp);
+            last = std::max(last, *stamp);
+        }
+        if (summary.messages > 1 && last > first) summary.rate_hz = static_cast<double>(summary.messages - 1) / ((last - first) * 1e-9);
+        summary.role = layout->sensor == chosen ? "points" : "unused (--sensor " + std::string(layout->sensor) + ")";
+        folders.push_back(std::move(summary));
+    }
+    return folders;
+}
+
 }  // namespace
 
 bool IsHeLiPRFolder(const fs::path& path) {
@@ -120,6 +146,7 @@ std::unique_ptr<Reader> OpenHeLiPR(const fs::path& path, const ReaderOptions& op
     StampedLayout layout;
     layout.info.format = "helipr";
     layout.info.path = path;
+    layout.info.topics = SensorFolders(path, sensor);
     layout.scans = ListStampedFiles(path / "LiDAR" / sensor, ".bin", &NanosecondStem, "named by their nanosecond time stamp (digits only)");
     layout.loader = sensor == "Ouster" ? &LoadOuster : sensor == "Velodyne" ? &LoadVelodyne : sensor == "Avia" ? &LoadAvia : &LoadAeva;
     layout.label = sensor;

@@ -27,7 +27,8 @@ std::optional<std::uint64_t> CloudStem(const std::string& stem) {
     return *sec + *nsec;
 }
 
-/// registered_poses.csv (2020) first, else the one gt-*.csv of the 2021 extension (ground_truth/ or ROOT).
+/// registered_poses.csv (2020) first, else the one gt-nc-*.csv or gt_state_*.csv (the maths sequences)
+/// of the 2021 extension, in ground_truth/ or ROOT.
 fs::path NewerCollegeReference(const fs::path& root) {
     if (fs::is_regular_file(root / "ground_truth" / "registered_poses.csv")) return root / "ground_truth" / "registered_poses.csv";
     std::vector<fs::path> found;
@@ -36,11 +37,12 @@ fs::path NewerCollegeReference(const fs::path& root) {
         if (!fs::is_directory(folder, ec)) continue;
         for (const auto& entry : fs::directory_iterator(folder, ec)) {
             const std::string name = entry.path().filename().string();
-            if (entry.is_regular_file() && name.rfind("gt-", 0) == 0 && entry.path().extension() == ".csv") found.push_back(entry.path());
+            const bool ground_truth = name.rfind("gt-", 0) == 0 || name.rfind("gt_state_", 0) == 0;
+            if (entry.is_regular_file() && ground_truth && entry.path().extension() == ".csv") found.push_back(entry.path());
         }
         if (!found.empty()) break;
     }
-    if (found.size() > 1) throw DatasetError(found[0].parent_path(), "several gt-*.csv ground truth files: give one with --gt");
+    if (found.size() > 1) throw DatasetError(found[0].parent_path(), "several gt-*.csv / gt_state_*.csv ground truth files: give one with --gt");
     return found.empty() ? fs::path() : found[0];
 }
 

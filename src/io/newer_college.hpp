@@ -12,7 +12,7 @@ namespace revisit {
 bool IsNewerCollegeFolder(const std::filesystem::path& path);
 
 /// Scans from the Ouster PCDs in the order of the stamps that name them; reference poses from
-/// ROOT/ground_truth/registered_poses.csv (2020) or the one ground_truth/gt-*.csv (2021 extension),
+/// ROOT/ground_truth/registered_poses.csv (2020) or the one gt-nc-*.csv / gt_state_*.csv (2021 extension),
 /// `#sec,nsec,x,y,z,qx,qy,qz,qw` lines, paired by time. No ground truth: no reference. Throws DatasetError.
 std::unique_ptr<Reader> OpenNewerCollege(const std::filesystem::path& path, const ReaderOptions& options);
 
