@@ -1,5 +1,7 @@
 #include "io/newer_college.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "io/stamped_layout.hpp"
 
@@ -25,6 +27,16 @@ std::optional<std::uint64_t> CloudStem(const std::string& stem) {
     const auto nsec = nsec_text.size() <= 9 ? DigitStamp(nsec_text, 1) : std::nullopt;
     if (!sec || !nsec || *sec > UINT64_MAX - *nsec) return std::nullopt;
     return *sec + *nsec;
+}
+
+/// A scan PCD. Its Ouster `t` field counts nanoseconds since the sweep began (uint32); the PCD reader
+/// takes time fields as seconds, so a span beyond a second (no sweep lasts that long) is nanoseconds.
+CloudData LoadNewerCollegePcd(const fs::path& file) {
+    CloudData cloud = LoadPcd(file);
+    if (!cloud.point_times.empty() && *std::max_element(cloud.point_times.begin(), cloud.point_times.end()) > 1.0f) {
+        for (float& t : cloud.point_times) t = static_cast<float>(t * 1e-9);
+    }
+    return cloud;
 }
 
 /// registered_poses.csv (2020) first, else the one gt-nc-*.csv or gt_state_*.csv (the maths sequences)
@@ -55,7 +67,7 @@ std::unique_ptr<Reader> OpenNewerCollege(const fs::path& path, const ReaderOptio
     layout.info.format = "newer college";
     layout.info.path = path;
     layout.scans = ListStampedFiles(NewerCollegeScans(path), ".pcd", &CloudStem, "named cloud_<sec>_<nsec>.pcd by their time stamp");
-    layout.loader = &LoadPcd;
+    layout.loader = &LoadNewerCollegePcd;
     layout.label = "OUSTER";
     layout.reference_file = NewerCollegeReference(path);
     layout.read_reference = &ReadSecNsecPoses;

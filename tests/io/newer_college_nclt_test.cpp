@@ -35,6 +35,10 @@ TEST(NewerCollegeLayout, ScansByStampAndRegisteredPosesPairedByTime) {
         ASSERT_TRUE(scan) << i;
         EXPECT_EQ(scan->points, sample.scans[i].points) << i;
         EXPECT_EQ(scan->intensities, sample.scans[i].intensities) << i;
+        ASSERT_EQ(scan->point_times.size(), scan->points.size()) << i;
+        for (std::size_t p = 0; p < scan->points.size(); p += 101) {
+            EXPECT_NEAR(scan->point_times[p], test::PointTime(p), 1e-7) << i << " " << p;  // the Ouster's ns, as seconds
+        }
         EXPECT_NEAR(scan->timestamp - test::kNewerCollegeStart * 1e-9, sample.times[i], 1e-6) << i;
         ASSERT_TRUE(scan->T_world_sensor) << i;
         ExpectPosesNear(*scan->T_world_sensor, sample.poses[i], i);

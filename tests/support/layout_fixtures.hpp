@@ -72,12 +72,15 @@ void AppendRaw(std::string& bytes, T value) {
     bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
 }
 
+/// [s] a point's time within its sweep, as the fixtures write it (0 .. 0.0999 s).
+inline float PointTime(std::size_t p) { return static_cast<float>(p % 1000) * 1e-4f; }
+
 constexpr std::uint64_t kNewerCollegeStart = 1583836591182590976ull;  ///< [ns] a Newer College 2020 clock
 constexpr std::uint64_t kNcltStart = 1326030975726043ull;             ///< [us] an NCLT (2012-01-08) clock
 
 inline std::string Stamp(std::uint64_t value) { return std::to_string(value); }
 
-/// Newer College 2020: raw_format/ouster_scan/cloud_<sec>_<nsec>.pcd (binary PCD, x y z intensity) and
+/// Newer College 2020: raw_format/ouster_scan/cloud_<sec>_<nsec>.pcd (binary PCD, x y z intensity t) and
 /// ground_truth/registered_poses.csv (#sec,nsec,x,y,z,qx,qy,qz,qw) at twice the scan rate.
 inline void MakeNewerCollege(const std::filesystem::path& root, const KittiSample& sample) {
     for (std::size_t i = 0; i < sample.scans.size(); ++i) {
@@ -86,12 +89,13 @@ inline void MakeNewerCollege(const std::filesystem::path& root, const KittiSampl
         std::snprintf(name, sizeof name, "cloud_%llu_%09llu.pcd", static_cast<unsigned long long>(ns / 1000000000ull),
                       static_cast<unsigned long long>(ns % 1000000000ull));
         const Scan& scan = sample.scans[i];
-        std::string pcd = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " +
+        std::string pcd = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity t\nSIZE 4 4 4 4 4\nTYPE F F F F U\nCOUNT 1 1 1 1 1\nWIDTH " +
                           std::to_string(scan.points.size()) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
                           std::to_string(scan.points.size()) + "\nDATA binary\n";
         for (std::size_t p = 0; p < scan.points.size(); ++p) {
             for (int c = 0; c < 3; ++c) AppendRaw(pcd, scan.points[p][c]);
             AppendRaw(pcd, scan.intensities[p]);
+            AppendRaw(pcd, static_cast<std::uint32_t>(std::lround(PointTime(p) * 1e9)));  // Ouster t [ns]
         }
         WriteBytes(root / "raw_format" / "ouster_scan" / name, pcd);
     }
@@ -157,7 +161,6 @@ constexpr std::uint64_t kAevaIntensitySince = 1691936557946849179ull;
 constexpr std::uint64_t kHeLiPRStart = kAevaIntensitySince - 250000000ull;  ///< [ns]
 
 inline std::uint64_t HeLiPRStamp(double t) { return kHeLiPRStart + static_cast<std::uint64_t>(std::llround(t * 1e9)); }
-inline float PointTime(std::size_t p) { return static_cast<float>(p % 1000) * 1e-4f; }  ///< [s] within the sweep
 
 /// One scan in a sensor's published record layout (float32 x, y, z first in all of them).
 inline std::string EncodeHeLiPR(const std::string& sensor, const Scan& scan, bool aeva_intensity) {
