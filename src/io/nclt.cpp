@@ -51,9 +51,15 @@ fs::path NcltGroundTruth(const fs::path& root) {
     return {};
 }
 
+/// The session folder, also when the user names its velodyne_sync/ folder.
+fs::path SessionOf(const fs::path& path) {
+    const fs::path trimmed = path.filename().empty() ? path.parent_path() : path;
+    return trimmed.filename() == "velodyne_sync" ? trimmed.parent_path() : path;
+}
+
 }  // namespace
 
-bool IsNcltFolder(const fs::path& path) { return HasFileWithExtension(path / "velodyne_sync", ".bin"); }
+bool IsNcltFolder(const fs::path& path) { return HasFileWithExtension(SessionOf(path) / "velodyne_sync", ".bin"); }
 
 CloudData LoadNcltBin(const fs::path& file) {
     const std::string data = ReadPointRecords(file, kPointBytes, "uint16 x, y, z, uint8 intensity, uint8 laser id");
@@ -72,10 +78,11 @@ CloudData LoadNcltBin(const fs::path& file) {
     return cloud;
 }
 
-std::unique_ptr<Reader> OpenNclt(const fs::path& path, const ReaderOptions& options) {
+std::unique_ptr<Reader> OpenNclt(const fs::path& given, const ReaderOptions& options) {
+    const fs::path path = SessionOf(given);
     StampedLayout layout;
     layout.info.format = "nclt";
-    layout.info.path = path;
+    layout.info.path = given;
     layout.scans = ListStampedFiles(path / "velodyne_sync", ".bin", &MicrosecondStem, "named by their microsecond time stamp (digits only)");
     layout.loader = &LoadNcltBin;
     layout.label = "VELODYNE";

@@ -9,7 +9,7 @@
 
 namespace revisit {
 
-/// ROOT/velodyne_sync/<us>.bin (ROOT is a session, e.g. 2012-01-08/).
+/// ROOT/velodyne_sync/<us>.bin (ROOT is a session, e.g. 2012-01-08/), or that velodyne_sync folder.
 bool IsNcltFolder(const std::filesystem::path& path);
 
 /// One velodyne_sync file: 8 bytes a point, little-endian uint16 x, y, z (metres = value * 0.005 -

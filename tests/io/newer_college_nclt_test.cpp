@@ -90,6 +90,9 @@ TEST(NcltLayout, ScaledPointsTurnedZUpAndGroundTruthPairedByTime) {
         ExpectPosesNear(*scan->T_world_sensor, sample.poses[i], i);
     }
     EXPECT_FALSE(reader->Next());
+    // The velodyne_sync folder itself names the same session.
+    EXPECT_EQ(test::ReadAllScans(dir / "2012-01-08" / "velodyne_sync").size(), sample.scans.size());
+    EXPECT_EQ(OpenDataset(dir / "2012-01-08" / "velodyne_sync")->Info().poses_file.filename(), "groundtruth_2012-01-08.csv");
 }
 
 TEST(NcltLayout, TruncatedScanAndBadGroundTruthLineAreNamed) {
