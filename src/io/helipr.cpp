@@ -55,8 +55,6 @@ CloudData LoadVelodyne(const fs::path& file) { return LoadHeLiPRBin(file, "Velod
 CloudData LoadAvia(const fs::path& file) { return LoadHeLiPRBin(file, "Avia"); }
 CloudData LoadAeva(const fs::path& file) { return LoadHeLiPRBin(file, "Aeva"); }
 
-std::optional<std::uint64_t> NanosecondStem(const std::string& stem) { return DigitStamp(stem, 1); }
-
 /// ns x y z qx qy qz qw, space-separated, in a global frame: moved so the first position is the origin.
 Trajectory ReadHeLiPRGroundTruth(const fs::path& file) {
     PoseTable table;
@@ -143,23 +141,24 @@ CloudData LoadHeLiPRBin(const fs::path& file, const std::string& sensor) {
 
 std::unique_ptr<Reader> OpenHeLiPR(const fs::path& path, const ReaderOptions& options) {
     const std::string sensor = ChosenSensor(path, options.sensor_label);
-    StampedLayout layout;
-    layout.info.format = "helipr";
-    layout.info.path = path;
-    layout.info.topics = SensorFolders(path, sensor);
-    layout.scans = ListStampedFiles(path / "LiDAR" / sensor, ".bin", &NanosecondStem, "named by their nanosecond time stamp (digits only)");
-    layout.loader = sensor == "Ouster" ? &LoadOuster : sensor == "Velodyne" ? &LoadVelodyne : sensor == "Avia" ? &LoadAvia : &LoadAeva;
-    layout.label = sensor;
-    std::transform(layout.label.begin(), layout.label.end(), layout.label.begin(), [](unsigned char c) { return std::toupper(c); });
+    std::string label = sensor;
+    std::transform(label.begin(), label.end(), label.begin(), [](unsigned char c) { return std::toupper(c); });
+    fs::path reference;
     for (const fs::path& candidate : {path / "LiDAR_GT" / (sensor + "_gt.txt"), path / "LiDAR_GT" / ("global_" + sensor + "_gt.txt"),
                                       path / (sensor + "_gt.txt")}) {
         if (fs::is_regular_file(candidate)) {
-            layout.reference_file = candidate;
+            reference = candidate;
             break;
         }
     }
-    layout.read_reference = &ReadHeLiPRGroundTruth;
-    return OpenStampedLayout(std::move(layout), options);
+    const CloudLoader loader = sensor == "Ouster"     ? &LoadOuster
+                               : sensor == "Velodyne" ? &LoadVelodyne
+                               : sensor == "Avia"     ? &LoadAvia
+                                                      : &LoadAeva;
+    return OpenStampedLayout({"helipr", path,
+                              ListStampedFiles(path / "LiDAR" / sensor, ".bin", &NanosecondStem, kNanosecondNames),
+                              loader, label, reference, &ReadHeLiPRGroundTruth, SensorFolders(path, sensor)},
+                             options);
 }
 
 }  // namespace revisit

@@ -24,8 +24,6 @@ const Eigen::Isometry3d& T_up_down() {
     return T;
 }
 
-std::optional<std::uint64_t> MicrosecondStem(const std::string& stem) { return DigitStamp(stem, 1000); }
-
 /// utime [us], x, y, z [m], roll, pitch, yaw [rad] (R = Rz(yaw) Ry(pitch) Rx(roll)), comma-separated.
 Trajectory ReadNcltGroundTruth(const fs::path& file) {
     PoseTable table;
@@ -80,15 +78,10 @@ CloudData LoadNcltBin(const fs::path& file) {
 
 std::unique_ptr<Reader> OpenNclt(const fs::path& given, const ReaderOptions& options) {
     const fs::path path = SessionOf(given);
-    StampedLayout layout;
-    layout.info.format = "nclt";
-    layout.info.path = given;
-    layout.scans = ListStampedFiles(path / "velodyne_sync", ".bin", &MicrosecondStem, "named by their microsecond time stamp (digits only)");
-    layout.loader = &LoadNcltBin;
-    layout.label = "VELODYNE";
-    layout.reference_file = NcltGroundTruth(path);
-    layout.read_reference = &ReadNcltGroundTruth;
-    return OpenStampedLayout(std::move(layout), options);
+    return OpenStampedLayout({"nclt", given,
+                              ListStampedFiles(path / "velodyne_sync", ".bin", &MicrosecondStem, kMicrosecondNames),
+                              &LoadNcltBin, "VELODYNE", NcltGroundTruth(path), &ReadNcltGroundTruth},
+                             options);
 }
 
 }  // namespace revisit

@@ -54,7 +54,9 @@ fs::path NewerCollegeReference(const fs::path& root) {
         }
         if (!found.empty()) break;
     }
-    if (found.size() > 1) throw DatasetError(found[0].parent_path(), "several gt-*.csv / gt_state_*.csv ground truth files: give one with --gt");
+    if (found.size() > 1) {
+        throw DatasetError(found[0].parent_path(), "several gt-*.csv / gt_state_*.csv ground truth files: give one with --gt");
+    }
     return found.empty() ? fs::path() : found[0];
 }
 
@@ -63,15 +65,10 @@ fs::path NewerCollegeReference(const fs::path& root) {
 bool IsNewerCollegeFolder(const fs::path& path) { return !NewerCollegeScans(path).empty(); }
 
 std::unique_ptr<Reader> OpenNewerCollege(const fs::path& path, const ReaderOptions& options) {
-    StampedLayout layout;
-    layout.info.format = "newer college";
-    layout.info.path = path;
-    layout.scans = ListStampedFiles(NewerCollegeScans(path), ".pcd", &CloudStem, "named cloud_<sec>_<nsec>.pcd by their time stamp");
-    layout.loader = &LoadNewerCollegePcd;
-    layout.label = "OUSTER";
-    layout.reference_file = NewerCollegeReference(path);
-    layout.read_reference = &ReadSecNsecPoses;
-    return OpenStampedLayout(std::move(layout), options);
+    return OpenStampedLayout({"newer college", path,
+                              ListStampedFiles(NewerCollegeScans(path), ".pcd", &CloudStem, "named cloud_<sec>_<nsec>.pcd by their stamp"),
+                              &LoadNewerCollegePcd, "OUSTER", NewerCollegeReference(path), &ReadSecNsecPoses},
+                             options);
 }
 
 }  // namespace revisit

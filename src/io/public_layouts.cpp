@@ -14,8 +14,6 @@ fs::path MulRanScans(const fs::path& root) {
     return {};
 }
 
-std::optional<std::uint64_t> NanosecondStem(const std::string& stem) { return DigitStamp(stem, 1); }
-
 /// ns stamp, then 12 numbers (3x4 row-major), comma-separated; UTM positions moved to the first pose.
 Trajectory ReadMulRanPoses(const fs::path& file) {
     PoseTable table;
@@ -36,15 +34,10 @@ bool IsMulRanFolder(const fs::path& path) {
 }
 
 std::unique_ptr<Reader> OpenMulRan(const fs::path& path, const ReaderOptions& options) {
-    StampedLayout layout;
-    layout.info.format = "mulran";
-    layout.info.path = path;
-    layout.scans = ListStampedFiles(MulRanScans(path), ".bin", &NanosecondStem, "named by their nanosecond time stamp (digits only)");
-    layout.loader = &LoadKittiBin;
-    layout.label = "OUSTER";
-    layout.reference_file = path / "global_pose.csv";
-    layout.read_reference = &ReadMulRanPoses;
-    return OpenStampedLayout(std::move(layout), options);
+    return OpenStampedLayout({"mulran", path,
+                              ListStampedFiles(MulRanScans(path), ".bin", &NanosecondStem, kNanosecondNames),
+                              &LoadKittiBin, "OUSTER", path / "global_pose.csv", &ReadMulRanPoses},
+                             options);
 }
 
 }  // namespace revisit

@@ -22,6 +22,9 @@ std::optional<std::uint64_t> DigitStamp(const std::string& stem, std::uint64_t n
     return value * ns_per_unit;
 }
 
+std::optional<std::uint64_t> NanosecondStem(const std::string& stem) { return DigitStamp(stem, 1); }
+std::optional<std::uint64_t> MicrosecondStem(const std::string& stem) { return DigitStamp(stem, 1000); }
+
 bool HasFileWithExtension(const fs::path& folder, const std::string& extension) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) return false;
@@ -61,7 +64,10 @@ Trajectory ReadPoseTable(const fs::path& file, const PoseTable& table) {
 }
 
 std::unique_ptr<Reader> OpenStampedLayout(StampedLayout layout, const ReaderOptions& options) {
-    DatasetInfo& info = layout.info;
+    DatasetInfo info;
+    info.format = layout.format;
+    info.path = layout.path;
+    info.topics = std::move(layout.streams);
     Trajectory reference;
     if (!options.poses_file.empty()) {
         info.poses_file = options.poses_file;

@@ -28,6 +28,12 @@ using StampOfStem = std::optional<std::uint64_t> (*)(const std::string& stem);
 /// for anything else or a value past 2^64 ns.
 std::optional<std::uint64_t> DigitStamp(const std::string& stem, std::uint64_t ns_per_unit);
 
+/// Stems of digits: nanoseconds (MulRan, HeLiPR) or microseconds (NCLT).
+std::optional<std::uint64_t> NanosecondStem(const std::string& stem);
+std::optional<std::uint64_t> MicrosecondStem(const std::string& stem);
+inline const char* const kNanosecondNames = "named by their nanosecond time stamp (digits only)";
+inline const char* const kMicrosecondNames = "named by their microsecond time stamp (digits only)";
+
 /// True when `folder` holds at least one file ending in `extension` (".bin").
 bool HasFileWithExtension(const std::filesystem::path& folder, const std::string& extension);
 /// The files of `folder` ending in `extension`, sorted by stamp; a file whose name is not a stamp is
@@ -46,14 +52,16 @@ struct PoseTable {
 /// Reads `file` as `table`; times must not decrease; no pose at all is a DatasetError.
 Trajectory ReadPoseTable(const std::filesystem::path& file, const PoseTable& table);
 
-/// A stamped scan layout ready to open: `info.format` and `info.path` set by the caller.
+/// A stamped scan layout ready to open.
 struct StampedLayout {
-    DatasetInfo info;
+    std::string format;                                ///< DatasetInfo::format
+    std::filesystem::path path;                        ///< what the user gave
     std::vector<StampedFile> scans;
     CloudLoader loader = nullptr;
     std::string label;                                 ///< Scan::sensor_label
     std::filesystem::path reference_file;              ///< the dataset's own reference; empty: it has none
     std::function<Trajectory(const std::filesystem::path&)> read_reference;
+    std::vector<TopicSummary> streams = {};            ///< for `revisit info`: the layout's other sensors, if any
 };
 /// The reader: `options.poses_file` (TUM or sec,nsec CSV: it must have times) replaces the dataset's
 /// reference; either pairs with the scans by time stamp.
