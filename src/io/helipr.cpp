@@ -67,6 +67,17 @@ Trajectory ReadHeLiPRGroundTruth(const fs::path& file) {
     return ReadPoseTable(file, table);
 }
 
+/// The sequence root and the sensor a path names: ROOT itself, or one of its LiDAR/<sensor> folders.
+std::pair<fs::path, std::string> RootAndFolder(const fs::path& path) {
+    const fs::path trimmed = path.filename().empty() ? path.parent_path() : path;
+    if (trimmed.parent_path().filename() == "LiDAR") {
+        for (const PointLayout* layout : kSensors) {
+            if (trimmed.filename() == layout->sensor) return {trimmed.parent_path().parent_path(), layout->sensor};
+        }
+    }
+    return {path, {}};
+}
+
 std::string ChosenSensor(const fs::path& root, const std::string& wanted) {
     std::string lower = wanted;
     std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -111,7 +122,8 @@ std::vector<TopicSummary> SensorFolders(const fs::path& root, const std::string&
 
 }  // namespace
 
-bool IsHeLiPRFolder(const fs::path& path) {
+bool IsHeLiPRFolder(const fs::path& given) {
+    const fs::path path = RootAndFolder(given).first;
     return std::any_of(std::begin(kSensors), std::end(kSensors),
                        [&path](const PointLayout* layout) { return HasFileWithExtension(path / "LiDAR" / layout->sensor, ".bin"); });
 }
@@ -139,8 +151,12 @@ CloudData LoadHeLiPRBin(const fs::path& file, const std::string& sensor) {
     return cloud;
 }
 
-std::unique_ptr<Reader> OpenHeLiPR(const fs::path& path, const ReaderOptions& options) {
-    const std::string sensor = ChosenSensor(path, options.sensor_label);
+std::unique_ptr<Reader> OpenHeLiPR(const fs::path& given, const ReaderOptions& options) {
+    const auto [path, folder] = RootAndFolder(given);
+    if (!folder.empty() && !options.sensor_label.empty() && ChosenSensor(path, options.sensor_label) != folder) {
+        throw DatasetError(given, "this is the " + folder + " folder, but --sensor asks for " + options.sensor_label);
+    }
+    const std::string sensor = folder.empty() ? ChosenSensor(path, options.sensor_label) : folder;
     std::string label = sensor;
     std::transform(label.begin(), label.end(), label.begin(), [](unsigned char c) { return std::toupper(c); });
     fs::path reference;
@@ -155,7 +171,7 @@ std::unique_ptr<Reader> OpenHeLiPR(const fs::path& path, const ReaderOptions& op
                                : sensor == "Velodyne" ? &LoadVelodyne
                                : sensor == "Avia"     ? &LoadAvia
                                                       : &LoadAeva;
-    return OpenStampedLayout({"helipr", path,
+    return OpenStampedLayout({"helipr", given,
                               ListStampedFiles(path / "LiDAR" / sensor, ".bin", &NanosecondStem, kNanosecondNames),
                               loader, label, reference, &ReadHeLiPRGroundTruth, SensorFolders(path, sensor)},
                              options);

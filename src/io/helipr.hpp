@@ -9,7 +9,8 @@
 
 namespace revisit {
 
-/// ROOT/LiDAR/<sensor>/<ns>.bin for one of Ouster, Velodyne, Avia, Aeva.
+/// ROOT/LiDAR/<sensor>/<ns>.bin for one of Ouster, Velodyne, Avia, Aeva (ROOT, or one such folder:
+/// that sensor).
 bool IsHeLiPRFolder(const std::filesystem::path& path);
 
 /// One .bin of `sensor` ("Ouster", "Velodyne", "Avia" or "Aeva"; the Aeva layout depends on the

@@ -54,6 +54,15 @@ TEST(HeLiPRLayout, EachSensorsRecordsAndGroundTruthPairedByTime) {
         }
         EXPECT_FALSE(reader->Next()) << name;
     }
+    // A sensor's own folder names the sequence and that sensor.
+    const fs::path velodyne = dir / "Roundabout01" / "LiDAR" / "Velodyne";
+    auto reader = OpenDataset(velodyne);
+    EXPECT_EQ(reader->Info().poses_file.filename(), "Velodyne_gt.txt");
+    EXPECT_EQ(reader->Next()->sensor_label, "VELODYNE");
+    ReaderOptions avia;
+    avia.sensor_label = "Avia";
+    EXPECT_NE(test::DatasetErrorOf([&] { OpenDataset(velodyne, avia); }).find("this is the Velodyne folder, but --sensor asks for Avia"),
+              std::string::npos);
 }
 
 TEST(HeLiPRLayout, BadRecordSizesSensorsAndGroundTruthLinesAreNamed) {
