@@ -53,9 +53,9 @@ void AddConvertCommand(CLI::App& root, Action& action) {
         "  revisit convert ~/kitti/sequences/00 seq00.rawlog.gz\n"
         "  revisit convert intel.rawlog intel_kitti/\n"
         "  revisit convert intel_kitti/ intel2d.rawlog --planar --beams 180 --aperture 180");
-    cmd->add_option("input", options->input, "KITTI folder, .pcd/.ply folder, .rawlog[.gz], or ROS bag (.mcap, .bag, rosbag2 folder)")->required();
+    cmd->add_option("input", options->input, "KITTI folder, .pcd/.ply folder, .rawlog[.gz], ROS bag (.mcap, .bag, rosbag2 folder), CARMEN log, or a MulRan, Newer College, NCLT or HeLiPR sequence folder")->required();
     cmd->add_option("output", options->output, "KITTI folder, or file ending in .rawlog / .rawlog.gz")->required();
-    cmd->add_option("--sensor", options->sensor, "rawlog input: only scans with this sensor label");
+    cmd->add_option("--sensor", options->sensor, "rawlog input: only scans with this sensor label; HeLiPR: the LiDAR (Ouster, Velodyne, Avia, Aeva)");
     cmd->add_option("--topic", options->topic, "ROS bag input: the scan topic (when several fit)");
     cmd->add_flag("--force", options->force, "write into an existing non-empty folder / overwrite a file");
     cmd->add_flag("--planar", options->planar, "rawlog output: store planar scans as CObservation2DRangeScan");

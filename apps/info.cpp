@@ -15,7 +15,7 @@ struct InfoOptions {
     std::string topic;
 };
 
-/// A ROS bag's topics and the role each gets.
+/// A ROS bag's topics (a HeLiPR sequence's LiDAR folders) and the role each gets.
 void PrintTopics(std::ostream& out, const std::vector<TopicSummary>& topics) {
     if (topics.empty()) return;
     out << "\ntopics:\n";
@@ -63,7 +63,7 @@ void AddInfoCommand(CLI::App& root, Action& action) {
         "  revisit info scans_pcd/ --poses gt_tum.txt\n"
         "  revisit info recording.mcap   (also lists the topics and the role each gets)");
     cmd->add_option("dataset", options->dataset, "KITTI folder, folder of .pcd/.ply, .rawlog[.gz] file, or ROS bag (.mcap, .bag, rosbag2 folder)")->required();
-    cmd->add_option("--sensor", options->sensor, "rawlogs: only scans with this sensor label");
+    cmd->add_option("--sensor", options->sensor, "rawlogs: only scans with this sensor label; HeLiPR: the LiDAR (Ouster, Velodyne, Avia, Aeva)");
     cmd->add_option("--topic", options->topic, "ROS bags: the scan topic (when several fit)");
     cmd->add_option("--poses", options->poses, "reference trajectory (KITTI 3x4 or TUM) overriding the dataset's own");
     cmd->callback([options, &action] { action = [options] { return RunInfo(*options); }; });

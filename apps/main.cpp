@@ -11,8 +11,8 @@ int main(int argc, char** argv) {
     CLI::App root{
         "revisit finds loop closures in LiDAR and 2D-laser sequences and corrects the drifted trajectory.\n"
         "Datasets: KITTI-style folders (velodyne/*.bin), folders of .pcd/.ply scans, MRPT rawlogs, ROS bags\n"
-        "(.bag, .mcap, rosbag2 folders), CARMEN logs, MulRan folders, and the simulator itself (sim:PRESET,\n"
-        "e.g. sim:demo: scans made as they are read, nothing on disk).\n"
+        "(.bag, .mcap, rosbag2 folders), CARMEN logs, MulRan, Newer College, NCLT and HeLiPR folders, and the\n"
+        "simulator itself (sim:PRESET, e.g. sim:demo: scans made as they are read, nothing on disk).\n"
         "Run `revisit SUBCOMMAND --help` for each command's options and examples.",
         "revisit"};
     root.require_subcommand(1);

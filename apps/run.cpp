@@ -81,7 +81,7 @@ void AddRunCommand(CLI::App& root, Action& action) {
         ->each([o](const std::string& topic) { o->config.overrides.push_back("input.topic=" + topic); });
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
     cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its poses) or a KITTI/TUM FILE")->capture_default_str();
-    cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI or TUM) for evaluation");
+    cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI, TUM or sec,nsec,x,y,z,qx,qy,qz,qw CSV) for evaluation");
     cmd->add_option("--from", o->from, "first scan index to use");
     cmd->add_option("--to", o->to, "last scan index to use (inclusive)")->each([o](const std::string&) { o->has_to = true; });
     cmd->add_option("--against", o->against,

@@ -11,7 +11,7 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
           "with auto_settings: odometry.max_range follows the scene's 99% range as the sequence unfolds (when not given)");
     s.Add("input.kitti_vertical_correction", &c.input.kitti_vertical_correction, "",
           "rotate KITTI HDL-64E points by 0.205 deg about their azimuth normal (docs/method.md, odometry)");
-    s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all)");
+    s.Add("input.sensor_label", &c.input.sensor_label, "", "rawlogs: use only this sensor label (empty: all); HeLiPR: the LiDAR read, Ouster, Velodyne, Avia or Aeva (empty: Ouster)");
     s.Add("input.topic", &c.input.topic, "", "ROS bags: the PointCloud2 or LaserScan topic (empty: the only one; --topic)");
     s.Add("input.odometry_topic", &c.input.odometry_topic, "",
           "ROS bags: the nav_msgs/Odometry topic giving the odometry prior (empty: the only one; none: no prior)");

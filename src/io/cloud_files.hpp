@@ -1,6 +1,7 @@
 #pragma once
 /// Single-scan point cloud files: KITTI .bin, PCD (ascii/binary) and PLY (ascii/binary little-endian).
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/scan.hpp"
@@ -20,6 +21,10 @@ struct CloudData {
     bool has_time = false;
 };
 
+/// A whole file of fixed-size point records of `record_size` bytes, after checking its size against
+/// the records: a size that is not a whole number of records (a truncated or damaged file) is a
+/// DatasetError naming the byte offset of the incomplete record and `layout` ("float32 x, y, z, ...").
+std::string ReadPointRecords(const std::filesystem::path& file, std::size_t record_size, const std::string& layout);
 /// float32 x, y, z, reflectance per point; throws DatasetError if the size is not a multiple of 16 bytes.
 CloudData LoadKittiBin(const std::filesystem::path& file);
 /// Fields x, y, z and optionally intensity and t/time/timestamp; DATA ascii or binary.

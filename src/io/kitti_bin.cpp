@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "core/atomic_file.hpp"
@@ -18,33 +19,37 @@ void CloudData::Add(float x, float y, float z, float intensity, float time) {
     if (has_time) point_times.push_back(time);
 }
 
-namespace {
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-}  // namespace
-
-CloudData LoadKittiBin(const std::filesystem::path& file) {
+std::string ReadPointRecords(const std::filesystem::path& file, std::size_t record_size, const std::string& layout) {
     std::error_code ec;
     const auto bytes = std::filesystem::file_size(file, ec);
     if (ec) throw DatasetError(file, "cannot read: " + ec.message());
-    if (bytes % (4 * sizeof(float)) != 0) {
-        throw DatasetError(file, "size " + std::to_string(bytes) +
-                                     " bytes is not a multiple of 16 (float32 x, y, z, intensity per point)");
+    if (bytes % record_size != 0) {
+        const auto complete = bytes - bytes % record_size;
+        throw DatasetError(file, "size " + std::to_string(bytes) + " bytes is not a multiple of " + std::to_string(record_size) +
+                                     " (one point: " + layout + "): the point at byte offset " +
+                                     std::to_string(complete) + " has only " + std::to_string(bytes - complete) +
+                                     " bytes (truncated or damaged file)");
     }
-    const FilePtr f(std::fopen(file.c_str(), "rb"));
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
     if (!f) throw DatasetError(file, "cannot open for reading");
-    std::vector<float> raw(bytes / sizeof(float));
-    if (std::fread(raw.data(), sizeof(float), raw.size(), f.get()) != raw.size()) {
-        throw DatasetError(file, "short read");
-    }
+    std::string data(static_cast<std::size_t>(bytes), '\0');
+    const std::size_t got = data.empty() ? 0 : std::fread(data.data(), 1, data.size(), f.get());
+    if (got != data.size()) throw DatasetError(file, "short read at byte offset " + std::to_string(got));
+    return data;
+}
+
+CloudData LoadKittiBin(const std::filesystem::path& file) {
+    const std::string data = ReadPointRecords(file, 4 * sizeof(float), "float32 x, y, z, intensity");
+    const std::size_t n = data.size() / (4 * sizeof(float));
     CloudData cloud;
     cloud.has_intensity = true;
-    const std::size_t n = raw.size() / 4;
     cloud.points.reserve(n);
     cloud.intensities.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) cloud.Add(raw[4 * i], raw[4 * i + 1], raw[4 * i + 2], raw[4 * i + 3], 0.f);
+    float v[4];
+    for (std::size_t i = 0; i < n; ++i) {
+        std::memcpy(v, data.data() + i * sizeof v, sizeof v);
+        cloud.Add(v[0], v[1], v[2], v[3], 0.f);
+    }
     return cloud;
 }
 

@@ -6,6 +6,9 @@
 #include "io/bag_source.hpp"
 #include "io/carmen_reader.hpp"
 #include "io/folder_reader.hpp"
+#include "io/helipr.hpp"
+#include "io/nclt.hpp"
+#include "io/newer_college.hpp"
 #include "io/public_layouts.hpp"
 #include "io/rawlog_reader.hpp"
 #include "io/writer.hpp"
@@ -58,7 +61,11 @@ std::unique_ptr<Reader> OpenDataset(const fs::path& path, const ReaderOptions& o
                                  ".pcd, .ply, rosbag2 metadata.yaml + .db3)");
     }
     if (!fs::is_directory(status)) throw DatasetError(path, "neither a file nor a folder");
+    // The public layouts before KITTI: their folders are told apart by their own sub-folders.
     if (IsMulRanFolder(path)) return OpenMulRan(path, options);
+    if (IsNewerCollegeFolder(path)) return OpenNewerCollege(path, options);
+    if (IsNcltFolder(path)) return OpenNclt(path, options);
+    if (IsHeLiPRFolder(path)) return OpenHeLiPR(path, options);
     if (IsKittiFolder(path)) return OpenKittiFolder(path, options);
     if (IsRosbag2Folder(path)) return OpenBag(OpenDb3Source(path), path, options);
     if (fs::is_directory(path / "sequences")) {

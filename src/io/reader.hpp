@@ -45,7 +45,7 @@ struct TopicSummary {
 };
 
 struct DatasetInfo {
-    std::string format;                    ///< "kitti", "pcd", "ply", "rawlog", "carmen", "mcap", "rosbag2 sqlite3" or "rosbag1"
+    std::string format;                    ///< "kitti", "pcd", "ply", "rawlog", "carmen", "mcap", "rosbag2 sqlite3", "rosbag1", "mulran", "newer college", "nclt" or "helipr"
     std::filesystem::path path;            ///< what the user gave
     std::optional<std::size_t> num_scans;  ///< known up front for folders; rawlogs count while reading
     bool has_reference_poses = false;      ///< known up front (folders); rawlogs: after reading
@@ -85,7 +85,8 @@ bool IsSchemeDataset(const std::filesystem::path& path);
 /// What a run records as its dataset: the absolute path, or the scheme name unchanged.
 std::string DatasetName(const std::filesystem::path& path);
 
-/// Picks the reader from the path: a registered scheme ("sim:PRESET"), a folder with velodyne/ (or sequences/NN + poses/NN.txt),
+/// Picks the reader from the path: a registered scheme ("sim:PRESET"), a public dataset's sequence folder
+/// (MulRan, Newer College, NCLT, HeLiPR), a folder with velodyne/ (or sequences/NN + poses/NN.txt),
 /// a folder of .pcd or .ply files, a .rawlog / .rawlog.gz file, a CARMEN log (.log / .clf, plain, .gz
 /// or .bz2), or a ROS bag: .mcap, ROS 1 .bag, or a rosbag2 folder (metadata.yaml + .db3). Throws DatasetError.
 std::unique_ptr<Reader> OpenDataset(const std::filesystem::path& path, const ReaderOptions& options = {});

@@ -31,15 +31,18 @@ void WriteText(const std::filesystem::path& file, Fill fill) {
     });
 }
 
-/// Parses all numbers of a line; false if any token is not a finite number.
-bool ParseNumbers(const std::string& line, std::vector<double>& values) {
+/// Parses all numbers of a line (commas count as spaces when `csv`); false if any token is not a
+/// number, or is not finite unless `allow_nan`.
+bool ParseNumbers(const std::string& line, std::vector<double>& values, bool csv = false, bool allow_nan = false) {
     values.clear();
-    std::istringstream tokens(line);
+    std::string text = line;
+    if (csv) std::replace(text.begin(), text.end(), ',', ' ');
+    std::istringstream tokens(text);
     std::string token;
     while (tokens >> token) {
         char* end = nullptr;
         const double value = std::strtod(token.c_str(), &end);
-        if (end == token.c_str() || *end != '\0' || !std::isfinite(value)) return false;
+        if (end == token.c_str() || *end != '\0' || std::isinf(value) || (std::isnan(value) && !allow_nan)) return false;
         values.push_back(value);
     }
     return true;
@@ -50,9 +53,10 @@ bool IsBlankOrComment(const std::string& line) {
     return first == std::string::npos || line[first] == '#';
 }
 
-/// Calls `on_values(values, line_number)` for every data line with `expected` numbers.
-template <typename OnValues>
-void ForEachDataLine(const std::filesystem::path& file, std::size_t expected, const char* what, OnValues on_values) {
+}  // namespace
+
+void ForEachNumberLine(const std::filesystem::path& file, const NumberLines& format,
+                       const std::function<void(const std::vector<double>&, std::size_t)>& on_values) {
     auto in = OpenText(file);
     std::string line;
     std::vector<double> values;
@@ -60,11 +64,12 @@ void ForEachDataLine(const std::filesystem::path& file, std::size_t expected, co
     while (std::getline(in, line)) {
         ++line_number;
         if (IsBlankOrComment(line)) continue;
-        if (!ParseNumbers(line, values) || values.size() != expected) {
-            throw DatasetError(file, std::string("malformed ") + what + " line: expected " +
-                                         std::to_string(expected) + " numbers",
+        if (!ParseNumbers(line, values, format.csv, format.skip_nan_lines) || values.size() != format.count) {
+            throw DatasetError(file, "malformed " + format.what + " line: expected " + std::to_string(format.count) +
+                                         (format.csv ? " comma-separated numbers" : " numbers"),
                                line_number);
         }
+        if (format.skip_nan_lines && std::any_of(values.begin(), values.end(), [](double v) { return std::isnan(v); })) continue;
         on_values(values, line_number);
     }
 }
@@ -80,11 +85,24 @@ Eigen::Isometry3d CleanPose(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, 
     return T;
 }
 
-}  // namespace
+Eigen::Isometry3d CleanPose(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, const std::filesystem::path& file,
+                            std::size_t line_number) {
+    if (std::abs(q.norm() - 1.0) > 1e-2) throw DatasetError(file, "quaternion is not unit length", line_number);
+    return CleanPose(q.normalized().toRotationMatrix(), t, file, line_number);
+}
+
+void AppendStampedPose(Trajectory& trajectory, double t, const Eigen::Isometry3d& T, const std::filesystem::path& file,
+                       std::size_t line_number) {
+    if (!trajectory.timestamps.empty() && t < trajectory.timestamps.back()) {
+        throw DatasetError(file, "time stamps go backwards", line_number);
+    }
+    trajectory.timestamps.push_back(t);
+    trajectory.poses.push_back(T);
+}
 
 Trajectory ReadKittiPoses(const std::filesystem::path& file) {
     Trajectory trajectory;
-    ForEachDataLine(file, 12, "KITTI pose", [&](const std::vector<double>& v, std::size_t line_number) {
+    ForEachNumberLine(file, {12, "KITTI pose"}, [&](const std::vector<double>& v, std::size_t line_number) {
         Eigen::Matrix3d R;
         R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
         trajectory.poses.push_back(CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), file, line_number));
@@ -94,16 +112,25 @@ Trajectory ReadKittiPoses(const std::filesystem::path& file) {
 
 Trajectory ReadTumPoses(const std::filesystem::path& file) {
     Trajectory trajectory;
-    ForEachDataLine(file, 8, "TUM pose", [&](const std::vector<double>& v, std::size_t line_number) {
+    ForEachNumberLine(file, {8, "TUM pose"}, [&](const std::vector<double>& v, std::size_t line_number) {
         const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-        if (std::abs(q.norm() - 1.0) > 1e-2) throw DatasetError(file, "quaternion is not unit length", line_number);
-        if (!trajectory.timestamps.empty() && v[0] < trajectory.timestamps.back()) {
-            throw DatasetError(file, "timestamps go backwards", line_number);
-        }
-        trajectory.timestamps.push_back(v[0]);
-        trajectory.poses.push_back(
-            CleanPose(q.normalized().toRotationMatrix(), Eigen::Vector3d(v[1], v[2], v[3]), file, line_number));
+        AppendStampedPose(trajectory, v[0], CleanPose(q, Eigen::Vector3d(v[1], v[2], v[3]), file, line_number), file,
+                          line_number);
     });
+    return trajectory;
+}
+
+Trajectory ReadSecNsecPoses(const std::filesystem::path& file) {
+    Trajectory trajectory;
+    ForEachNumberLine(file, {9, "sec,nsec,x,y,z,qx,qy,qz,qw pose", true},
+                      [&](const std::vector<double>& v, std::size_t line_number) {
+                          if (v[1] < 0.0 || v[1] >= 1e9) throw DatasetError(file, "nsec is not in [0, 1e9)", line_number);
+                          const Eigen::Quaterniond q(v[8], v[5], v[6], v[7]);
+                          AppendStampedPose(trajectory, v[0] + v[1] * 1e-9,
+                                            CleanPose(q, Eigen::Vector3d(v[2], v[3], v[4]), file, line_number), file,
+                                            line_number);
+                      });
+    if (trajectory.empty()) throw DatasetError(file, "no poses");
     return trajectory;
 }
 
@@ -113,17 +140,19 @@ Trajectory ReadPoses(const std::filesystem::path& file) {
     std::vector<double> values;
     while (std::getline(in, line)) {
         if (IsBlankOrComment(line)) continue;
-        ParseNumbers(line, values);
+        ParseNumbers(line, values, line.find(',') != std::string::npos);
+        if (line.find(',') != std::string::npos && values.size() == 9) return ReadSecNsecPoses(file);
         if (values.size() == 12) return ReadKittiPoses(file);
         if (values.size() == 8) return ReadTumPoses(file);
-        throw DatasetError(file, "not a KITTI (12 numbers per line) or TUM (8 numbers per line) trajectory");
+        throw DatasetError(file, "not a KITTI (12 numbers per line), TUM (8 numbers per line) or sec,nsec,x,y,z,qx,qy,qz,qw "
+                                 "(9 comma-separated numbers) trajectory");
     }
     throw DatasetError(file, "trajectory file has no poses");
 }
 
 std::vector<double> ReadTimes(const std::filesystem::path& file) {
     std::vector<double> times;
-    ForEachDataLine(file, 1, "time", [&](const std::vector<double>& v, std::size_t line_number) {
+    ForEachNumberLine(file, {1, "time"}, [&](const std::vector<double>& v, std::size_t line_number) {
         // Every later stage pairs scans by time: a step backwards is damage, named where it is.
         if (!times.empty() && v[0] < times.back()) {
             throw DatasetError(file, "time goes backwards (" + std::to_string(v[0]) + " s after " +

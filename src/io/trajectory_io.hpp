@@ -1,6 +1,9 @@
 #pragma once
 /// KITTI (3x4 row-major per line) and TUM (t x y z qx qy qz qw) trajectory files.
 #include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "core/trajectory.hpp"
 
@@ -12,7 +15,9 @@ enum class PoseFormat { kKitti, kTum };
 Trajectory ReadKittiPoses(const std::filesystem::path& file);
 /// Reads a TUM file; '#' comments and blank lines are skipped. Throws DatasetError with the line.
 Trajectory ReadTumPoses(const std::filesystem::path& file);
-/// Guesses the format from the first data line (12 vs 8 numbers) and reads it.
+/// Reads `#sec,nsec,x,y,z,qx,qy,qz,qw` lines (Newer College's ground truth): time = sec + nsec * 1e-9 [s].
+Trajectory ReadSecNsecPoses(const std::filesystem::path& file);
+/// Guesses the format from the first data line (12 or 8 numbers, or 9 comma-separated) and reads it.
 Trajectory ReadPoses(const std::filesystem::path& file);
 /// Reads KITTI times.txt (one time [s] per line).
 std::vector<double> ReadTimes(const std::filesystem::path& file);
@@ -26,6 +31,27 @@ void WriteTimes(const std::filesystem::path& file, const std::vector<double>& ti
 /// (9 decimals): what a dataset written to disk holds, for readers that make their data in memory.
 Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T);
 double AsStoredTime(double t);
+
+/// How the data lines of a numeric text file look; blank lines and '#' comments are always skipped.
+struct NumberLines {
+    std::size_t count = 0;        ///< numbers per data line
+    std::string what;             ///< for messages: "malformed <what> line"
+    bool csv = false;             ///< commas separate the numbers
+    bool skip_nan_lines = false;  ///< lines holding "nan" are skipped (some datasets mark missing poses so)
+};
+/// Calls `on_values(values, line_number)` for every data line; a line with another count of numbers,
+/// a token that is not a number or an infinite value is a DatasetError naming the line.
+void ForEachNumberLine(const std::filesystem::path& file, const NumberLines& format,
+                       const std::function<void(const std::vector<double>&, std::size_t)>& on_values);
+/// A pose from a text file's rounded rotation; a matrix (or quaternion) far from a rotation is a
+/// DatasetError naming the line.
+Eigen::Isometry3d CleanPose(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const std::filesystem::path& file,
+                            std::size_t line_number);
+Eigen::Isometry3d CleanPose(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, const std::filesystem::path& file,
+                            std::size_t line_number);
+/// Appends (t, T); a time before the previous one is a DatasetError naming the line.
+void AppendStampedPose(Trajectory& trajectory, double t, const Eigen::Isometry3d& T, const std::filesystem::path& file,
+                       std::size_t line_number);
 
 /// For each query time, the index of the trajectory entry with the nearest timestamp, or -1 when
 /// the nearest is farther than max_dt [s]. Trajectory timestamps must be sorted.

@@ -152,6 +152,14 @@ int main(int argc, char** argv) {
         Seed(out / "fuzz_scans", "ply-ascii", 2,
              "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nelement vertex 2\nproperty float x\n"
              "property float y\nproperty float z\nend_header\n3 0 1 2\n1 2 3\n4 5 6\n");
+        // NCLT (8-byte) and HeLiPR (26, 22, 19, 29-byte) records: two points each.
+        const int record_bytes[] = {8, 26, 22, 19, 29};
+        const char* const record_names[] = {"nclt", "helipr-ouster", "helipr-velodyne", "helipr-avia", "helipr-aeva"};
+        for (int i = 0; i < 5; ++i) {
+            std::string records(2 * static_cast<std::size_t>(record_bytes[i]), '\0');
+            for (std::size_t b = 0; b < records.size(); ++b) records[b] = static_cast<char>(b * 37 % 251);
+            Seed(out / "fuzz_scans", record_names[i], 3 + i, records);
+        }
         // Trajectories, times, calib.
         Trajectory trajectory;
         for (int i = 0; i < 3; ++i) {
@@ -164,6 +172,9 @@ int main(int argc, char** argv) {
         Seed(out / "fuzz_trajectories", "kitti", 0, ReadBytes(tmp / "k.txt"));
         Seed(out / "fuzz_trajectories", "tum", 0, ReadBytes(tmp / "t.txt"));
         Seed(out / "fuzz_trajectories", "times", 1, ReadBytes(tmp / "times.txt"));
+        Seed(out / "fuzz_trajectories", "sec-nsec-csv", 0,
+             "#sec,nsec,x,y,z,qx,qy,qz,qw\n1583836591, 182590976, 1.0, 2.0, 0.5, 0, 0, 0, 1\n"
+             "1583836591, 282590976, 1.5, 2.0, 0.5, 0, 0, 0.0998, 0.995\n");
         Seed(out / "fuzz_trajectories", "calib", 2, "P0: 1 0 0 0 0 1 0 0 0 0 1 0\nTr: 1 0 0 0.1 0 1 0 0 0 0 1 -0.2\n");
         // Rawlogs: plain and gzip, point clouds and 2D range scans with odometry and ground truth.
         for (const char* name : {"r.rawlog", "r.rawlog.gz", "planar.rawlog"}) {

@@ -7,7 +7,7 @@
 #include "core/pose_interpolation.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
-#include "test_data.hpp"
+#include "layout_fixtures.hpp"
 
 namespace revisit {
 namespace {
@@ -19,31 +19,25 @@ constexpr std::uint64_t kStart = 1566535000000000000ull;  ///< [ns] a MulRan-lik
 /// global_pose.csv at twice the scan rate (poses between scans interpolated), offset by UTM-like metres.
 void MakeMulRan(const fs::path& root, std::size_t n, std::size_t first_pose_scan = 0) {
     const auto kitti = test::SharedData("kitti00_first16");
-    const auto times = ReadTimes(kitti / "times.txt");
-    const auto poses = ReadKittiPoses(kitti / "poses.txt").poses;
+    const auto sample = test::LoadKittiSample(n);
     fs::create_directories(root / "sensor_data" / "Ouster");
-    char name[64];
     for (std::size_t i = 0; i < n; ++i) {
-        std::snprintf(name, sizeof name, "%llu.bin", static_cast<unsigned long long>(kStart + std::llround(times[i] * 1e9)));
         char kitti_name[16];
         std::snprintf(kitti_name, sizeof kitti_name, "%06zu.bin", i);
-        fs::copy_file(kitti / "velodyne" / kitti_name, root / "sensor_data" / "Ouster" / name);
+        fs::copy_file(kitti / "velodyne" / kitti_name,
+                      root / "sensor_data" / "Ouster" / (std::to_string(kStart + std::llround(sample.times[i] * 1e9)) + ".bin"));
     }
     std::ofstream csv(root / "global_pose.csv");
-    for (std::size_t i = first_pose_scan; i < n; ++i) {
-        for (int half = 0; half < 2 && (half == 0 || i + 1 < n); ++half) {
-            const double t = half == 0 ? times[i] : 0.5 * (times[i] + times[i + 1]);
-            const Eigen::Isometry3d T = half == 0 ? poses[i] : InterpolatePose(poses[i], poses[i + 1], 0.5);
-            csv << kStart + static_cast<std::uint64_t>(std::llround(t * 1e9));
-            for (int r = 0; r < 3; ++r) {
-                for (int c = 0; c < 4; ++c) {
-                    char value[40];
-                    std::snprintf(value, sizeof value, ",%.9f", T(r, c) + (c == 3 && r < 2 ? 350000.0 * (r + 1) : 0.0));
-                    csv << value;
-                }
+    for (const auto& [t, T] : test::TwiceRatePoses(sample, first_pose_scan)) {
+        csv << kStart + static_cast<std::uint64_t>(std::llround(t * 1e9));
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 4; ++c) {
+                char value[40];
+                std::snprintf(value, sizeof value, ",%.9f", T(r, c) + (c == 3 && r < 2 ? 350000.0 * (r + 1) : 0.0));
+                csv << value;
             }
-            csv << '\n';
         }
+        csv << '\n';
     }
 }
 
@@ -55,8 +49,9 @@ TEST(MulRanLayout, ScansByStampAndReferencePairedByTime) {
     auto reader = OpenDataset(dir / "KAIST01");
     EXPECT_EQ(reader->Info().format, "mulran");
     EXPECT_TRUE(reader->Info().has_reference_poses);
-    const auto times = ReadTimes(kitti / "times.txt");
-    const auto poses = ReadKittiPoses(kitti / "poses.txt").poses;
+    const auto sample = test::LoadKittiSample(6);
+    const auto& times = sample.times;
+    const auto& poses = sample.poses;  // the LiDAR's, as the fixture wrote them
     auto original = OpenDataset(kitti);
     for (std::size_t i = 0; i < 6; ++i) {
         const auto scan = reader->Next();
@@ -87,7 +82,7 @@ TEST(MulRanLayout, ScansBeforeTheFirstPoseHaveNoneAndBadLinesAreNamed) {
         OpenDataset(dir / "seq");
         FAIL() << "a short global_pose.csv line was accepted";
     } catch (const DatasetError& e) {
-        EXPECT_NE(std::string(e.what()).find("global_pose.csv:4: expected a time stamp"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("global_pose.csv:4: malformed MulRan pose"), std::string::npos) << e.what();
     }
 }
 
