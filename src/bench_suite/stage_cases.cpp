@@ -89,6 +89,12 @@ void ReaderCases(const CaseContext& c) {
         MeasureReader(c, "kitti00_first16", c.data_dir / "kitti00_first16", 0.0, "16 real HDL-64E scans, KITTI .bin");
     if (c.Need("radish/intel.rawlog", "reader/intel.rawlog"))
         MeasureReader(c, "intel.rawlog", c.data_dir / "radish/intel.rawlog", M_PI, "13,631 real 2D scans, MRPT rawlog");
+    // The same 241 scans as a gzipped CARMEN log and as the KITTI folder converted from it.
+    if (c.Need("carmen_kitti/seattle", "reader/carmen_kitti seattle"))
+        MeasureReader(c, "carmen_kitti seattle", c.data_dir / "carmen_kitti/seattle", 0.0, "241 real 2D scans, KITTI .bin");
+    if (c.Need("carmen/seattle-corrected.log.gz", "reader/seattle CARMEN log"))
+        MeasureReader(c, "seattle CARMEN log", c.data_dir / "carmen/seattle-corrected.log.gz", 0.0,
+                      "the same 241 scans, CARMEN log (gzip)");
 }
 
 void BagReaderCases(const CaseContext& c) {
