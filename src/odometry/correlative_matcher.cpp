@@ -12,7 +12,6 @@ namespace {
 /// everywhere and bound nothing (measured: 7 levels cost 5x more on carmen_kitti's maps).
 constexpr int kMaxLevels = 4;
 constexpr std::size_t kMaxPoints = 800;  ///< scan points scored at most (every k-th beyond)
-constexpr int kKernelCells = 2;          ///< a reference point lights cells within this many of it
 constexpr double kKeptShare = 0.8;       ///< far points are dropped only while this share remains
 
 /// The likelihood grid and its max-pooled levels: level l, cell (i, j) = max of level 0 over
@@ -29,19 +28,23 @@ struct GridPyramid {
     }
 };
 
-void Rasterize(GridPyramid& grid, const std::vector<Eigen::Vector3d>& reference) {
+/// Cells within which a reference point lights the grid: two sigmas.
+int KernelCells(double sigma_cells) { return std::max(1, static_cast<int>(std::ceil(2.0 * sigma_cells))); }
+
+void Rasterize(GridPyramid& grid, const std::vector<Eigen::Vector3d>& reference, double sigma_cells) {
     const int n = grid.size;
     auto& base = grid.levels[0];
     const double inv = 1.0 / grid.resolution;
-    // sigma = one cell: a point lights its own cell fully and the next two less.
+    const int kernel_cells = KernelCells(sigma_cells);
+    const double inv_var = 1.0 / (sigma_cells * sigma_cells);
     for (const auto& p : reference) {
         const double u = (p.x() - grid.origin.x()) * inv, v = (p.y() - grid.origin.y()) * inv;
         const int ci = static_cast<int>(std::floor(u)), cj = static_cast<int>(std::floor(v));
-        if (ci < -kKernelCells || cj < -kKernelCells || ci >= n + kKernelCells || cj >= n + kKernelCells) continue;
-        for (int j = std::max(0, cj - kKernelCells); j <= std::min(n - 1, cj + kKernelCells); ++j) {
-            for (int i = std::max(0, ci - kKernelCells); i <= std::min(n - 1, ci + kKernelCells); ++i) {
+        if (ci < -kernel_cells || cj < -kernel_cells || ci >= n + kernel_cells || cj >= n + kernel_cells) continue;
+        for (int j = std::max(0, cj - kernel_cells); j <= std::min(n - 1, cj + kernel_cells); ++j) {
+            for (int i = std::max(0, ci - kernel_cells); i <= std::min(n - 1, ci + kernel_cells); ++i) {
                 const double du = u - (i + 0.5), dv = v - (j + 0.5);
-                const auto value = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(-0.5 * (du * du + dv * dv))));
+                const auto value = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(-0.5 * (du * du + dv * dv) * inv_var)));
                 auto& cell = base[static_cast<std::size_t>(j) * static_cast<std::size_t>(n) + static_cast<std::size_t>(i)];
                 cell = std::max(cell, value);
             }
@@ -78,7 +81,9 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
                                     const CorrelativeMatchConfig& config) {
     CorrelativeMatch match;
     match.T_world_sensor = T_initial;
-    if (reference_in_world.empty() || points_in_sensor.empty() || !(config.resolution > 0.0)) return match;
+    if (reference_in_world.empty() || points_in_sensor.empty() || !(config.resolution > 0.0) || !(config.kernel_sigma_cells > 0.0))
+        return match;
+    const int kernel_cells = KernelCells(config.kernel_sigma_cells);
 
     // Scan points (x, y), every k-th beyond the budget.
     const std::size_t stride = std::max<std::size_t>(1, (points_in_sensor.size() + kMaxPoints - 1) / kMaxPoints);
@@ -93,7 +98,7 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
     if (points.empty()) return match;
     // Far returns would coarsen the cell for all: those beyond what the grid holds at the asked
     // resolution are dropped while at least kKeptShare of the points remain.
-    const double fit = 0.5 * (config.max_grid_cells - 2 * (kKernelCells + 2)) * config.resolution - config.linear_window;
+    const double fit = 0.5 * (config.max_grid_cells - 2 * (kernel_cells + 2)) * config.resolution - config.linear_window;
     const auto within = static_cast<std::size_t>(std::count_if(points.begin(), points.end(), [&](const Eigen::Vector2d& p) { return p.norm() <= fit; }));
     if (fit > 0.0 && within < points.size() && static_cast<double>(within) >= kKeptShare * static_cast<double>(points.size())) {
         points.erase(std::remove_if(points.begin(), points.end(), [&](const Eigen::Vector2d& p) { return p.norm() > fit; }), points.end());
@@ -104,7 +109,7 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
 
     // The grid covers every point under every searched pose; its cell grows when that needs more
     // than max_grid_cells per side.
-    const int margin = kKernelCells + 2;
+    const int margin = kernel_cells + 2;
     const double half = reach + config.linear_window;
     const double resolution = std::max(config.resolution, 2.0 * half / std::max(1, config.max_grid_cells - 2 * margin));
     GridPyramid grid;
@@ -117,7 +122,7 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
     while (levels < kMaxLevels && (1 << (levels - 1)) < window) ++levels;
     grid.levels.assign(static_cast<std::size_t>(levels), {});
     grid.levels[0].assign(static_cast<std::size_t>(grid.size) * static_cast<std::size_t>(grid.size), 0);
-    Rasterize(grid, reference_in_world);
+    Rasterize(grid, reference_in_world, config.kernel_sigma_cells);
 
     // Rotations: a step that moves nine in ten points by at most a cell (Olson: the farthest point; the
     // ICP that follows refines the rest), within the budget.
@@ -147,13 +152,14 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
     }
     const double full = 255.0 * static_cast<double>(n);
     const double penalty_scale = config.prior_weight * full;
+    const double prior_cells = config.prior_distance > 0.0 ? config.prior_distance / resolution : static_cast<double>(window);
     const auto bound = [&](int level, int angle, int dx, int dy) {
         const int* c = &cells[static_cast<std::size_t>(angle + angles) * n * 2];
         long sum = 0;
         for (std::size_t i = 0; i < n; ++i) sum += grid.At(level, c[2 * i] + dx, c[2 * i + 1] + dy);
         const int span = (1 << level) - 1;
         const double mx = MinAbs(dx, std::min(dx + span, window)), my = MinAbs(dy, std::min(dy + span, window));
-        const double f = 0.5 * (mx * mx + my * my) / (static_cast<double>(window) * window) +
+        const double f = 0.5 * (mx * mx + my * my) / (prior_cells * prior_cells) +
                          (angles > 0 ? static_cast<double>(angle) * angle / (static_cast<double>(angles) * angles) : 0.0);
         return static_cast<double>(sum) - 0.5 * penalty_scale * f;
     };
@@ -218,7 +224,9 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
     match.angle_step = angle_step;
     match.points = n;
     match.valid = true;
-    match.at_edge = std::abs(best.dx) >= window || std::abs(best.dy) >= window || (angles > 0 && std::abs(best.angle) >= angles);
+    match.at_linear_edge = std::abs(best.dx) >= window || std::abs(best.dy) >= window;
+    match.at_angular_edge = angles > 0 && std::abs(best.angle) >= angles;
+    match.at_edge = match.at_linear_edge || match.at_angular_edge;
     return match;
 }
 

@@ -384,4 +384,13 @@ void VoxelHashMap::PointsNear(const Eigen::Vector3d& origin, double radius, std:
     }
 }
 
+void VoxelHashMap::AllPointsNear(const Eigen::Vector3d& origin, double radius, std::vector<Eigen::Vector3d>& out) const {
+    const double radius2 = radius * radius;
+    for (std::size_t slot = 0; slot < voxels_.size(); ++slot) {
+        if ((points_[slot * max_points_] - origin).squaredNorm() > radius2) continue;
+        out.insert(out.end(), points_.begin() + static_cast<std::ptrdiff_t>(slot * max_points_),
+                   points_.begin() + static_cast<std::ptrdiff_t>(slot * max_points_ + counts_[slot]));
+    }
+}
+
 }  // namespace revisit

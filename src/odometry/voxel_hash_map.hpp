@@ -82,6 +82,9 @@ class VoxelHashMap {
     /// Appends the first point of every voxel within `radius` [m] of `origin` (one per voxel: a
     /// picture of the map at its voxel's resolution).
     void PointsNear(const Eigen::Vector3d& origin, double radius, std::vector<Eigen::Vector3d>& out) const;
+    /// Appends every point of every voxel within `radius` [m] of `origin` (a picture of the map finer
+    /// than its voxels).
+    void AllPointsNear(const Eigen::Vector3d& origin, double radius, std::vector<Eigen::Vector3d>& out) const;
     double voxel_size() const { return voxel_size_; }
 
   private:
