@@ -54,12 +54,10 @@ std::vector<std::vector<std::size_t>> FindRevisits(const Poses& T_world_referenc
     return revisits;
 }
 
-RevisitCoverage ComputeRevisitCoverage(const Poses& T_world_reference, const std::vector<MapRange>& maps,
-                                       const std::vector<std::pair<std::size_t, std::size_t>>& true_map_pairs,
-                                       const ClosureTruthConfig& config) {
+RevisitCoverage ComputeRevisitCoverage(const std::vector<std::vector<std::size_t>>& revisits, const std::vector<MapRange>& maps,
+                                       const std::vector<std::pair<std::size_t, std::size_t>>& true_map_pairs) {
     std::set<std::pair<std::size_t, std::size_t>> joined;
     for (const auto& [a, b] : true_map_pairs) joined.insert(std::minmax(a, b));
-    const auto revisits = FindRevisits(T_world_reference, config.revisit_radius, config.revisit_gap);
     RevisitCoverage coverage;
     for (std::size_t s = 0; s < revisits.size(); ++s) {
         if (revisits[s].empty()) continue;

@@ -43,9 +43,9 @@ struct RevisitCoverage {
 /// For every scan, the earlier scans it revisits (reference positions, travel along the reference path).
 std::vector<std::vector<std::size_t>> FindRevisits(const Poses& T_world_reference, double radius, double gap);
 
-/// `maps` sorted by first scan, disjoint; `true_map_pairs` hold indices into `maps` (either order).
-RevisitCoverage ComputeRevisitCoverage(const Poses& T_world_reference, const std::vector<MapRange>& maps,
-                                       const std::vector<std::pair<std::size_t, std::size_t>>& true_map_pairs,
-                                       const ClosureTruthConfig& config);
+/// `revisits` from FindRevisits (found once, scored for any set of closures); `maps` sorted by first
+/// scan, disjoint; `true_map_pairs` hold indices into `maps` (either order).
+RevisitCoverage ComputeRevisitCoverage(const std::vector<std::vector<std::size_t>>& revisits, const std::vector<MapRange>& maps,
+                                       const std::vector<std::pair<std::size_t, std::size_t>>& true_map_pairs);
 
 }  // namespace revisit

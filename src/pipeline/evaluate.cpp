@@ -247,8 +247,9 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
         true_pairs.emplace_back(MapIndexOfScan(ranges, accepted[k].query_first_scan), MapIndexOfScan(ranges, accepted[k].ref_first_scan));
         if (methods[k] != "proximity") true_detector_pairs.push_back(true_pairs.back());
     }
-    e.coverage = ComputeRevisitCoverage(state.reference, ranges, true_pairs, config.truth);
-    e.detector_coverage = ComputeRevisitCoverage(state.reference, ranges, true_detector_pairs, config.truth);
+    const auto revisits = FindRevisits(state.reference, config.truth.revisit_radius, config.truth.revisit_gap);
+    e.coverage = ComputeRevisitCoverage(revisits, ranges, true_pairs);
+    e.detector_coverage = ComputeRevisitCoverage(revisits, ranges, true_detector_pairs);
     e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_matches, config.detector.min_inliers);
     WriteMetrics(run, e, VerificationJson(e, accepted, methods, config.truth));
     return e;

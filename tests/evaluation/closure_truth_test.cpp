@@ -61,14 +61,14 @@ TEST(RevisitCoverage, CountsRevisitingScansInMapsJoinedByATrueClosure) {
     // Maps of 10 scans (the last holds scan 60 alone).
     std::vector<MapRange> maps;
     for (std::size_t first = 0; first < reference.size(); first += 10) maps.push_back({first, std::min(first + 9, reference.size() - 1)});
-    const auto none = ComputeRevisitCoverage(reference, maps, {}, config);
+    const auto none = ComputeRevisitCoverage(revisits, maps, {});
     EXPECT_EQ(none.revisit_scans, expected);
     EXPECT_EQ(none.covered_scans, 0u);
-    const auto some = ComputeRevisitCoverage(reference, maps, {{0, 5}}, config);  // map 5 = scans 50..59, back at x 9..0
+    const auto some = ComputeRevisitCoverage(revisits, maps, {{0, 5}});  // map 5 = scans 50..59, back at x 9..0
     EXPECT_EQ(some.covered_scans, 10u);
     EXPECT_NEAR(some.coverage, 10.0 / double(expected), 1e-12);
     // Either direction: the pair given as (reference, query) counts the same.
-    EXPECT_EQ(ComputeRevisitCoverage(reference, maps, {{5, 0}}, config).covered_scans, 10u);
+    EXPECT_EQ(ComputeRevisitCoverage(revisits, maps, {{5, 0}}).covered_scans, 10u);
 }
 
 }  // namespace
