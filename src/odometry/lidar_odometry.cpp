@@ -161,12 +161,15 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vecto
     half_turn.translation() = delta.translation();
     half_turn.linear() = Eigen::AngleAxisd(0.5 * predicted_turn, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Isometry3d T_centre = ProjectToPlanar(Orthonormalized(last_pose * half_turn));
-    // The map within reach of any searched pose, one point per voxel.
-    reference_.clear();
-    if (fine)
-        map_.AllPointsNear(T_centre.translation(), config_.max_range + config_.correlative_window, reference_);
-    else
-        map_.PointsNear(T_centre.translation(), config_.max_range + config_.correlative_window, reference_);
+    // The map within reach of any searched pose: every point for the fine grid, else one per voxel.
+    const auto gather = [&](double window) {
+        reference_.clear();
+        if (fine)
+            map_.AllPointsNear(T_centre.translation(), config_.max_range + window, reference_);
+        else
+            map_.PointsNear(T_centre.translation(), config_.max_range + window, reference_);
+    };
+    gather(config_.correlative_window);
     CorrelativeMatch match = MatchCorrelative2D(reference_, source, T_centre, match_config);
     // A best pose on the window's border says the motion may lie beyond it (a spin in place, a long
     // step): the search is repeated over twice the windows, and the better match kept.
@@ -174,11 +177,7 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vecto
         CorrelativeMatchConfig wider = match_config;
         wider.linear_window *= 2.0;
         wider.angular_window = std::min(2.0 * wider.angular_window, M_PI);
-        reference_.clear();
-        if (fine)
-            map_.AllPointsNear(T_centre.translation(), config_.max_range + wider.linear_window, reference_);
-        else
-            map_.PointsNear(T_centre.translation(), config_.max_range + wider.linear_window, reference_);
+        gather(wider.linear_window);
         const CorrelativeMatch retry = MatchCorrelative2D(reference_, source, T_centre, wider);
         if (retry.valid && retry.score > match.score) match = retry;
     }
