@@ -7,6 +7,7 @@
 #include <string>
 #include <tbb/parallel_for.h>
 
+#include "closures/descriptor_matching.hpp"
 #include "core/error.hpp"
 
 namespace revisit {
@@ -31,6 +32,7 @@ ClosureDetectorConfig ClosureDetectorConfig::Later() {
     config.selection = CandidateSelection::kAllAboveMin;
     config.min_matches = 3;
     config.min_inliers = 6;
+    config.rematch = false;
     config.ransac.sampling = RansacSampling::kRandom;
     config.ransac.max_trials = 688;  // ceil(log(0.001) / log(1 - 0.1^2))
     config.ransac.weighted_sampling = false;
@@ -133,7 +135,7 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     }
     std::vector<Closure> verified(candidates.size());
     tbb::parallel_for(std::size_t(0), candidates.size(),
-                      [&](std::size_t c) { verified[c] = Verify(record, candidates[c], grouped[c]); });
+                      [&](std::size_t c) { verified[c] = Verify(record, descriptors, candidates[c], grouped[c]); });
     comparisons_.clear();
     std::vector<bool> is_candidate(records_.size(), false);
     for (std::size_t c : candidates) is_candidate[c] = true;
@@ -160,6 +162,7 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     start = Clock::now();
     tree_.Add(descriptors, std::int32_t(records_.size()));
     stats_.tree_ms += MsSince(start);
+    if (config_.rematch) record.descriptors = descriptors;
     records_.push_back(std::move(record));
     return closures;
 }
@@ -213,7 +216,8 @@ std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int
     return candidates;
 }
 
-Closure ClosureDetector::Verify(const MapRecord& query, std::size_t ref_index, const std::vector<TreeMatch>& matches) const {
+Closure ClosureDetector::Verify(const MapRecord& query, const std::vector<Descriptor>& query_descriptors,
+                                std::size_t ref_index, const std::vector<TreeMatch>& matches) const {
     const MapRecord& ref = records_[ref_index];
     Closure closure;
     closure.query_id = query.id;
@@ -225,12 +229,17 @@ Closure ClosureDetector::Verify(const MapRecord& query, std::size_t ref_index, c
     closure.num_votes = int(matches.size());
     closure.query_keypoints = query.keypoints;
     closure.ref_keypoints = ref.keypoints;
+    if (config_.rematch && !ref.descriptors.empty()) {
+        closure.matches = MatchMutualBest(query_descriptors, ref.descriptors, config_.tree.max_distance);
+    } else {
+        closure.matches.reserve(matches.size());
+        for (const auto& m : matches) closure.matches.push_back({m.query, m.keypoint, m.distance});
+    }
     std::vector<PointPair> pairs;
-    pairs.reserve(matches.size());
-    for (const auto& m : matches) {
-        closure.matches.push_back({m.query, m.keypoint, m.distance});
+    pairs.reserve(closure.matches.size());
+    for (const auto& m : closure.matches) {
         // Paper-era code weights samples by descriptor distance: closer descriptors are drawn more often.
-        pairs.push_back({ToMetric(ref, ref.keypoints[m.keypoint]), ToMetric(query, query.keypoints[m.query]),
+        pairs.push_back({ToMetric(ref, ref.keypoints[m.ref_keypoint]), ToMetric(query, query.keypoints[m.query_keypoint]),
                          double(config_.tree.max_distance - m.distance)});
     }
     RansacConfig ransac = config_.ransac;
@@ -266,7 +275,10 @@ std::vector<std::vector<Descriptor>> ClosureDetector::AllDescriptors() const {
 
 std::size_t ClosureDetector::MemoryBytes() const {
     std::size_t bytes = tree_.MemoryBytes() + records_.capacity() * sizeof(MapRecord);
-    for (const auto& r : records_) bytes += r.keypoints.capacity() * sizeof(Eigen::Vector2f) + r.image_png.capacity();
+    for (const auto& r : records_) {
+        bytes += r.keypoints.capacity() * sizeof(Eigen::Vector2f) + r.descriptors.capacity() * sizeof(Descriptor) +
+                 r.image_png.capacity();
+    }
     return bytes;
 }
 
@@ -277,6 +289,7 @@ void ClosureDetector::Restore(MapRecord record, const std::vector<Descriptor>& d
                           std::to_string(record.keypoints.size()) + " keypoints");
     }
     tree_.Add(descriptors, std::int32_t(records_.size()));
+    if (config_.rematch) record.descriptors = descriptors;
     session_ = std::max(session_, record.session);
     records_.push_back(std::move(record));
 }

@@ -35,9 +35,17 @@ struct ClosureDetectorConfig {
     RansacConfig ransac;           ///< inlier_distance is set per pair from inlier_pixels
     double inlier_pixels = 3.0;    ///< [pixels] RANSAC gate (1.5 m at 0.5 m per pixel)
     int min_inliers = 10;          ///< gamma: paper 10; later code 6 (more than 5)
+    /// Beyond the paper: RANSAC on the mutual best matches between the query's and the candidate's
+    /// descriptors instead of the tree's matches, which only see the one leaf each query descends to
+    /// (the tree still votes and selects the candidates).
+    bool rematch = true;
     bool store_images = true;      ///< keep the density images (PNG-compressed) for reports and persistence
 
-    static ClosureDetectorConfig Paper() { return {}; }
+    static ClosureDetectorConfig Paper() {
+        ClosureDetectorConfig config;
+        config.rematch = false;
+        return config;
+    }
     /// The authors' later public code (v2.x) where it differs from the paper.
     static ClosureDetectorConfig Later();
     /// Beyond the paper for small-scale / sparse sequences (METHOD.md 5b); keeps driving-scale behaviour.
@@ -58,6 +66,7 @@ struct MapRecord {
     int rows = 0;
     int cols = 0;
     std::vector<Eigen::Vector2f> keypoints;  ///< [pixels]
+    std::vector<Descriptor> descriptors;     ///< one per keypoint; kept only when rematch is on
     std::vector<std::uint8_t> image_png;     ///< empty unless store_images
 };
 
@@ -137,7 +146,8 @@ class ClosureDetector {
     /// `skipped` (out): per stored map, true when the skip-recent rule excluded it.
     std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const MapRecord& query,
                                               std::vector<bool>& skipped) const;
-    Closure Verify(const MapRecord& query, std::size_t ref_index, const std::vector<TreeMatch>& matches) const;
+    Closure Verify(const MapRecord& query, const std::vector<Descriptor>& query_descriptors, std::size_t ref_index,
+                   const std::vector<TreeMatch>& matches) const;
 
     ClosureDetectorConfig config_;
     HammingTree tree_;

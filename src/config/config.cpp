@@ -121,6 +121,7 @@ void BindFeaturesAndMatching(ConfigSchema& s, PipelineConfig& c) {
     s.Add("detector.skip_recent_travel", &d.skip_recent_travel, "m", "beyond the paper: skip by travelled distance instead; 0 = by count", Range{0, 1e6});
     s.Add("detector.inlier_pixels", &d.inlier_pixels, "px", "RANSAC inlier gate (paper: 3)", Range{0.1, 100});
     s.Add("detector.min_inliers", &d.min_inliers, "", "gamma: accept with this many inliers (paper: 10; later 6)", Range{2, 100000});
+    s.Add("detector.rematch", &d.rematch, "", "beyond the paper: RANSAC on every mutual best descriptor match with the candidate, not only the tree's one-leaf matches");
     s.Add("detector.store_images", &d.store_images, "", "keep density images in the database (reports, persistence)");
     auto& r = c.detector.ransac;
     s.AddEnum("ransac.sampling", &r.sampling, {{"exhaustive", RansacSampling::kExhaustive}, {"random", RansacSampling::kRandom}},

@@ -66,6 +66,11 @@ class VoxelHashMap {
     void EnableNormals(bool enabled, bool in_plane = false) {
         normals_enabled_ = enabled;
         normals_in_plane_ = in_plane;
+        if (!enabled) {
+            normals_.clear();
+            normal_ok_.clear();
+            normal_counts_.clear();
+        }
     }
     /// The unit normal of the voxel holding `point` (a pointer FindNearest returned), or nullptr when
     /// its points do not span a plane (too few, collinear, or a volume): the caller falls back to

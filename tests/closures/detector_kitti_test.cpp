@@ -57,6 +57,31 @@ TEST(ClosureDetectorKitti, FindsTheOverlappingMapAtTheRegisteredPose) {
     }
 }
 
+TEST(ClosureDetectorKitti, RematchingFindsMoreInliersThanTheTreesLeaves) {
+    if (!test::HaveKitti()) GTEST_SKIP() << "shared KITTI data absent: " << test::KittiDir();
+    const auto& k = Kitti();
+    // The tree's matches come from the one leaf each query descriptor descends to; matching the
+    // candidate's descriptors again finds the true correspondences the leaves split apart.
+    int inliers[2] = {0, 0};
+    for (const bool rematch : {false, true}) {
+        auto config = ClosureDetectorConfig::Paper();
+        config.skip_recent_maps = 0;
+        config.rematch = rematch;
+        ClosureDetector detector(config);
+        detector.AddMap(k.ref);
+        const auto closures = detector.AddMap(k.query);
+        ASSERT_EQ(closures.size(), 1u) << "rematch " << rematch;
+        const auto& c = closures[0];
+        inliers[rematch] = c.num_inliers;
+        std::cout << "rematch " << rematch << ": votes " << c.num_votes << " matches " << c.matches.size() << " inliers "
+                  << c.num_inliers << " dt " << test::TranslationError(c.T_query_ref, k.T_query_ref_truth) << " m\n";
+        EXPECT_EQ(c.matches.size(), c.inlier_mask.size());
+        EXPECT_LT(test::TranslationError(c.T_query_ref, k.T_query_ref_truth), 0.5) << "rematch " << rematch;
+        EXPECT_LT(test::YawError(c.T_query_ref, k.T_query_ref_truth), 1.0 * M_PI / 180.0) << "rematch " << rematch;
+    }
+    EXPECT_GT(inliers[1], inliers[0]);
+}
+
 TEST(ClosureDetectorKitti, RecoversRandomYawsAndShiftsOfARealMap) {
     if (!test::HaveKitti()) GTEST_SKIP() << "shared KITTI data absent: " << test::KittiDir();
     const auto& k = Kitti();

@@ -63,7 +63,8 @@ TEST(ClosureDetectorSim, NoClosureBetweenUnrelatedPlaces) {
     });
     for (const auto& [name, base] : {std::pair{"paper", ClosureDetectorConfig::Paper()},
                                      std::pair{"later", ClosureDetectorConfig::Later()},
-                                     std::pair{"robust", ClosureDetectorConfig::Robust(0.0)}}) {
+                                     std::pair{"robust", ClosureDetectorConfig::Robust(0.0)},
+                                     std::pair{"default (rematch)", ClosureDetectorConfig{}}}) {
         auto config = base;
         config.skip_recent_maps = 0;
         config.selection = CandidateSelection::kAllAboveMin;
