@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 
@@ -10,6 +11,7 @@
 #include "evaluation/scan_context.hpp"
 #include "io/prefetch_reader.hpp"
 #include "io/reader.hpp"
+#include "pipeline/covered_run.hpp"
 #include "pipeline/progress.hpp"
 
 namespace revisit {
@@ -20,12 +22,15 @@ namespace {
 
 /// Ground-truth closures and ScanContext descriptors from one pass over the scans of the run.
 struct DatasetPass {
-    GtClosures ground_truth;
-    std::vector<ScanContextDescriptor> scan_context;
+    GtClosures ground_truth;  ///< over the evaluated scans (positions of `reference`)
+    std::vector<ScanContextDescriptor> scan_context;  ///< one per scan of the run
 };
 
-DatasetPass ReadDatasetPass(const RunState& state, const RunOptions& options, const PipelineConfig& config,
-                            const std::optional<GtClosures>& cached, std::ostream& log) {
+/// `reference` holds a pose per evaluated scan, `scans` each one's position in the run (empty: every
+/// scan of the run, `run_scans` of them, is evaluated).
+DatasetPass ReadDatasetPass(const Poses& reference, const std::vector<std::size_t>& scans, std::size_t run_scans,
+                            const RunOptions& options, const PipelineConfig& config, const std::optional<GtClosures>& cached,
+                            std::ostream& log) {
     DatasetPass pass;
     const bool need_scan_context = config.output.scan_context;
     if (cached) pass.ground_truth = *cached;
@@ -33,20 +38,43 @@ DatasetPass ReadDatasetPass(const RunState& state, const RunOptions& options, co
     ReaderOptions reader_options = MakeReaderOptions(config.input);
     reader_options.allow_truncated = options.allow_truncated;  // the same scans the run read
     const std::unique_ptr<Reader> reader = std::make_unique<PrefetchReader>(OpenDataset(options.dataset, reader_options), 2);
-    GroundTruthBuilder builder(state.reference, config.ground_truth);
-    Progress progress(log, Progress::DetectMode(options.quiet), state.reference.size(), "scans (evaluation)");
-    std::size_t position = 0;
-    while (position < state.reference.size()) {
+    GroundTruthBuilder builder(reference, config.ground_truth);
+    Progress progress(log, Progress::DetectMode(options.quiet), run_scans, "scans (evaluation)");
+    std::size_t position = 0, evaluated = 0;  // in the run; in `reference`
+    while (position < run_scans) {
         auto scan = reader->Next();
         if (!scan) break;
         if (scan->index < options.from) continue;
-        if (!cached && builder.NeedsScan(position)) builder.AddScan(position, scan->points);
+        const bool is_evaluated = evaluated < reference.size() && RunScan(scans, evaluated) == position;
+        if (is_evaluated && !cached && builder.NeedsScan(evaluated)) builder.AddScan(evaluated, scan->points);
+        evaluated += is_evaluated;
         if (need_scan_context) pass.scan_context.push_back(MakeScanContext(scan->points, config.scan_context));
         progress.Update(++position);
     }
     progress.Finish(position);
     if (!cached) pass.ground_truth = builder.Finish();
     return pass;
+}
+
+/// ScanContext searches every scan of the run, as with a full reference; the candidates between two
+/// evaluated scans are kept, at their evaluated positions.
+std::vector<ScanContextCandidate> EvaluatedCandidates(std::vector<ScanContextCandidate> candidates,
+                                                      const std::vector<std::size_t>& scans) {
+    if (scans.empty()) return candidates;
+    std::vector<ScanContextCandidate> kept;
+    const auto position = [&scans](std::size_t scan) -> std::optional<std::size_t> {
+        const auto it = std::lower_bound(scans.begin(), scans.end(), scan);
+        if (it == scans.end() || *it != scan) return std::nullopt;
+        return static_cast<std::size_t>(it - scans.begin());
+    };
+    for (auto c : candidates) {
+        const auto query = position(c.query), candidate = position(c.candidate);
+        if (!query || !candidate) continue;
+        c.query = *query;
+        c.candidate = *candidate;
+        kept.push_back(c);
+    }
+    return kept;
 }
 
 std::optional<GtClosures> ReadCache(const fs::path& file, const std::string& key) {
@@ -111,12 +139,14 @@ json FunnelJson(const RecallFunnel& f, bool detector) {
     return j;
 }
 
+/// `scans`: the run's scan at each evaluated position (empty: the same).
 json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEval>& accepted, const std::vector<std::string>& methods,
-                      const ClosureTruthConfig& config) {
+                      const std::vector<std::size_t>& scans, const ClosureTruthConfig& config) {
     json closures = json::array();
     for (std::size_t k = 0; k < accepted.size(); ++k) {
         const auto& verdict = e.truth.verdicts[k];
-        closures.push_back({{"method", methods[k]}, {"query_first_scan", accepted[k].query_first_scan}, {"ref_first_scan", accepted[k].ref_first_scan},
+        closures.push_back({{"method", methods[k]}, {"query_first_scan", RunScan(scans, accepted[k].query_first_scan)},
+                            {"ref_first_scan", RunScan(scans, accepted[k].ref_first_scan)},
                             {"true", verdict.is_true}, {"translation_error_m", verdict.error.translation},
                             {"yaw_error_deg", verdict.error.yaw_deg}});
     }
@@ -141,7 +171,23 @@ json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEva
                                  {"per_stage", per_stage}, {"missed", missed}}}};
 }
 
-void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& verification) {
+json TrajectoriesJson(const RunEvaluation& e) {
+    return {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}};
+}
+
+/// A partial reference: how many scans it pairs, and how much of the run the closure metrics cover.
+json ReferenceJson(const RunEvaluation& e, std::size_t run_scans, std::size_t run_maps) {
+    return {{"scans", run_scans}, {"paired_scans", e.reference_scans}, {"maps", run_maps},
+            {"evaluated_maps", e.evaluated_maps}, {"evaluated_scans", e.evaluated_scans},
+            {"left_out_closures", e.left_out_closures}, {"left_out_accepted_closures", e.left_out_accepted}};
+}
+
+void WriteJson(const fs::path& file, const json& content) {
+    WriteFileAtomically(file, [&content](std::ostream& out) { out << std::setw(2) << content << '\n'; });
+}
+
+/// `extra`: more top-level keys (a partial reference's block).
+void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& verification, const json& extra) {
     json methods = json::array();
     for (const auto& m : e.methods) {
         methods.push_back({{"method", m.method}, {"precision", m.best.precision}, {"recall", m.best.recall},
@@ -158,9 +204,10 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
                        {"yaw_error_deg", StatsJson(e.map_metrics.yaw_error_deg)},
                        {"maps_with_revisit", e.map_recall.maps_with_revisit}, {"maps_found_right", e.map_recall.maps_found_right},
                        {"map_recall", e.map_recall.recall}}},
-        {"trajectory", {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}}}};
+        {"trajectory", TrajectoriesJson(e)}};
     metrics.update(verification);
-    WriteFileAtomically(run.metrics_json(), [&metrics](std::ostream& out) { out << std::setw(2) << metrics << '\n'; });
+    if (!extra.is_null()) metrics.update(extra);
+    WriteJson(run.metrics_json(), metrics);
     for (const auto& [method, sweep] : e.sweeps) {
         WriteFileAtomically(run.root() / ("pr_curve_" + method + ".csv"),
                             [&sweep = sweep](std::ostream& out) { WritePrCurveCsv(out, sweep); });
@@ -168,51 +215,25 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
     WriteFileAtomically(run.root() / "comparison.md", [&e](std::ostream& out) { WriteComparisonTable(out, e.methods); });
 }
 
-/// The reference covers some scans only: APE, RPE and the KITTI errors on those, every other metric
-/// left out (each needs the reference pose of every scan of the maps it judges).
-RunEvaluation EvaluatePartialReference(const RunFolder& run, const RunState& state, std::ostream& log) {
-    Poses odometry, corrected;
-    for (const std::size_t position : state.reference_scans) {
-        odometry.push_back(state.odometry.at(position));
-        corrected.push_back(state.corrected.at(position));
-    }
-    RunEvaluation e;
-    e.closure_metrics = false;
-    e.reference_scans = state.reference_scans.size();
-    e.odometry = EvaluateTrajectory(odometry, state.reference);
-    e.corrected = EvaluateTrajectory(corrected, state.reference);
-    log << "note: the reference covers " << e.reference_scans << " of " << state.odometry.size()
-        << " scans: trajectory metrics on those only; the closure metrics need a reference pose for every scan\n";
-    const json metrics = {{"reference", {{"scans", state.odometry.size()}, {"paired_scans", e.reference_scans}}},
-                          {"trajectory", {{"odometry", TrajectoryJson(e.odometry)}, {"corrected", TrajectoryJson(e.corrected)}}}};
-    WriteFileAtomically(run.metrics_json(), [&metrics](std::ostream& out) { out << std::setw(2) << metrics << '\n'; });
-    return e;
-}
-
-}  // namespace
-
-std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
-                                         const PipelineConfig& config, std::ostream& log) {
-    if (state.has_partial_reference() && state.reference_scans.size() >= 2) return EvaluatePartialReference(run, state, log);
-    if (!state.has_reference() || state.odometry.size() < 2) return std::nullopt;
-    const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth,
-                                                state.dataset + "#" + std::to_string(options.from) + "#" +
-                                                    std::to_string(state.reference.size()));
-    const fs::path cache_file = run.root() / "ground_truth_closures.txt";
+/// The closure metrics of `state`, which has a reference pose for every scan; `e` holds the
+/// trajectory metrics. `scans`: the run's scan at each of state's positions when `state` is the
+/// part of a run its reference covers (CoveredRun), empty when it is the run itself.
+void EvaluateClosures(const RunFolder& run, const RunState& state, const std::vector<std::size_t>& scans, std::size_t run_scans,
+                      const RunOptions& options, const PipelineConfig& config, const json& extra, RunEvaluation& e,
+                      std::ostream& log) {
+    std::string salt = state.dataset + "#" + std::to_string(options.from) + "#" + std::to_string(state.reference.size());
+    for (const std::size_t scan : scans) salt += "," + std::to_string(scan);
+    const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth, salt);
+    const fs::path cache_file = run.root() / "ground_truth_closures.txt";  // at the evaluated positions
     const auto cached = ReadCache(cache_file, key);
-    const DatasetPass pass = ReadDatasetPass(state, options, config, cached, log);
+    const DatasetPass pass = ReadDatasetPass(state.reference, scans, run_scans, options, config, cached, log);
     if (!cached) {
         WriteFileAtomically(cache_file, [&](std::ostream& out) { WriteGroundTruthClosures(out, pass.ground_truth, key); });
     }
     const auto& gt = pass.ground_truth;
-
-    RunEvaluation e;
-    e.reference_scans = state.reference.size();
     e.gt_segments = gt.segments.size();
     e.gt_closing_segment_pairs = gt.segment_pairs.size();
     e.gt_scan_pairs = gt.scan_pairs.size();
-    e.odometry = EvaluateTrajectory(state.odometry, state.reference);
-    e.corrected = EvaluateTrajectory(state.corrected, state.reference);
 
     const auto density = ForEval(state, "density");
     e.sweeps["density"] = ScoreMapClosures(density, state.odometry, gt.scan_pairs, config.predicted);
@@ -225,7 +246,8 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
         e.methods.push_back(SummarizeMethod("elevation maps", e.sweeps["elevation"]));
     }
     if (!pass.scan_context.empty()) {
-        e.sweeps["scan_context"] = ScoreScanContext(SearchScanContext(pass.scan_context, config.scan_context), gt.scan_pairs);
+        const auto candidates = EvaluatedCandidates(SearchScanContext(pass.scan_context, config.scan_context), scans);
+        e.sweeps["scan_context"] = ScoreScanContext(candidates, gt.scan_pairs);
         e.methods.push_back(SummarizeMethod("ScanContext", e.sweeps["scan_context"]));
     }
     MapMetricsConfig map_config;
@@ -251,7 +273,57 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     e.coverage = ComputeRevisitCoverage(revisits, ranges, true_pairs);
     e.detector_coverage = ComputeRevisitCoverage(revisits, ranges, true_detector_pairs);
     e.missed = FindMissedRevisits(state, gt.scan_pairs, e.truth, config.detector.min_matches, config.detector.min_inliers);
-    WriteMetrics(run, e, VerificationJson(e, accepted, methods, config.truth));
+    WriteMetrics(run, e, VerificationJson(e, accepted, methods, scans, config.truth), extra);
+}
+
+/// The reference covers some scans only: APE, RPE and the KITTI errors on those; the closure metrics
+/// on the local maps it covers whole (each metric needs the reference pose of every scan of the maps
+/// it judges), the closures with a map outside them left out and counted.
+RunEvaluation EvaluatePartialReference(const RunFolder& run, const RunState& state, const RunOptions& options,
+                                       const PipelineConfig& config, std::ostream& log) {
+    Poses odometry, corrected;
+    for (const std::size_t position : state.reference_scans) {
+        odometry.push_back(state.odometry.at(position));
+        corrected.push_back(state.corrected.at(position));
+    }
+    RunEvaluation e;
+    e.reference_scans = state.reference_scans.size();
+    e.odometry = EvaluateTrajectory(odometry, state.reference);
+    e.corrected = EvaluateTrajectory(corrected, state.reference);
+    const CoveredRun covered = CoverOfReference(state);
+    e.left_out_closures = covered.left_out_closures;
+    e.left_out_accepted = covered.left_out_accepted;
+    log << "note: the reference covers " << e.reference_scans << " of " << state.odometry.size() << " scans: trajectory metrics on those; ";
+    if (covered.state.odometry.size() < 2 || covered.state.maps.empty()) {
+        e.closure_metrics = false;
+        log << "no local map lies wholly within it, so no closure metrics\n";
+        WriteJson(run.metrics_json(), {{"reference", ReferenceJson(e, state.odometry.size(), state.maps.size())},
+                                       {"trajectory", TrajectoriesJson(e)}});
+        return e;
+    }
+    e.evaluated_scans = covered.state.odometry.size();
+    e.evaluated_maps = covered.state.maps.size();
+    log << "closure metrics on the " << e.evaluated_scans << " scans of the " << e.evaluated_maps << " of "
+        << state.maps.size() << " local maps it covers whole; " << e.left_out_closures
+        << " closure candidates with a map outside them are left out\n";
+    const json extra = {{"reference", ReferenceJson(e, state.odometry.size(), state.maps.size())}};
+    EvaluateClosures(run, covered.state, covered.scans, state.odometry.size(), options, config, extra, e, log);
+    return e;
+}
+
+}  // namespace
+
+std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
+                                         const PipelineConfig& config, std::ostream& log) {
+    if (state.has_partial_reference() && state.reference_scans.size() >= 2)
+        return EvaluatePartialReference(run, state, options, config, log);
+    if (!state.has_reference() || state.odometry.size() < 2) return std::nullopt;
+    RunEvaluation e;
+    e.reference_scans = e.evaluated_scans = state.reference.size();
+    e.evaluated_maps = state.maps.size();
+    e.odometry = EvaluateTrajectory(state.odometry, state.reference);
+    e.corrected = EvaluateTrajectory(state.corrected, state.reference);
+    EvaluateClosures(run, state, {}, state.odometry.size(), options, config, json(), e, log);
     return e;
 }
 

@@ -22,10 +22,16 @@ struct TrajectoryEvaluation {
 };
 
 struct RunEvaluation {
-    /// False when the reference covers only some scans (RunState::reference_scans): then only the
-    /// trajectory metrics are computed, on those scans; the closure metrics need every scan's pose.
+    /// False when the reference covers no local map whole (a partial reference): then only the
+    /// trajectory metrics are computed, on the scans it covers.
     bool closure_metrics = true;
-    std::size_t reference_scans = 0;  ///< scans with a reference pose (all of them when closure_metrics)
+    std::size_t reference_scans = 0;  ///< scans with a reference pose: the trajectory metrics' (all of a full reference)
+    /// A partial reference (RunState::reference_scans): the closure metrics below are those of the local
+    /// maps it covers whole (CoveredRun), their scans and closures; with a full reference, the whole run.
+    std::size_t evaluated_scans = 0;
+    std::size_t evaluated_maps = 0;
+    std::size_t left_out_closures = 0;  ///< candidates (detector, proximity pass) with a map outside: not scored
+    std::size_t left_out_accepted = 0;  ///< of those, closures of the final pose graph
     std::size_t gt_segments = 0;
     std::size_t gt_closing_segment_pairs = 0;
     std::size_t gt_scan_pairs = 0;
@@ -45,8 +51,9 @@ struct RunEvaluation {
     TrajectoryEvaluation corrected;
 };
 
-/// Everything above for a run with reference poses for every scan; the trajectory metrics alone
-/// when some scans have none (nullopt without any): re-reads the dataset once
+/// Everything above for a run with reference poses for every scan; when some scans have none, the
+/// trajectory metrics on the others and the closure metrics on the maps it covers whole (nullopt
+/// without any reference): re-reads the dataset once
 /// (only the scans the ground truth and ScanContext need), writes metrics.json, pr_curve_<method>.csv
 /// and comparison.md into the run folder.
 std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,

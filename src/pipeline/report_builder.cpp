@@ -131,6 +131,21 @@ std::optional<RevisitFindings> ReadRevisitFindings(const nlohmann::json& metrics
     return findings;
 }
 
+/// A partial reference's note: what the figures cover (empty when they cover the whole run).
+std::string EvaluationScope(const nlohmann::json& metrics) {
+    if (!metrics.is_object() || !metrics.contains("reference")) return "";
+    const auto& r = metrics["reference"];
+    const auto count = [&r](const char* key) { return std::to_string(r.value(key, std::size_t{0})); };
+    std::string scope = "The reference poses cover " + count("paired_scans") + " of " + count("scans") +
+                        " scans: APE, RPE and the KITTI errors are those scans'. ";
+    if (!metrics.contains("methods"))
+        return scope + "No local map lies wholly within the reference, so there are no closure metrics.";
+    return scope + "The closure figures (ground truth, precision and recall, closure truth, revisit coverage, missed revisits) cover " +
+           count("evaluated_scans") + " of " + count("scans") + " scans: the " + count("evaluated_maps") + " of " + count("maps") +
+           " local maps the reference covers whole. " + count("left_out_closures") + " closure candidates (" +
+           count("left_out_accepted_closures") + " accepted) involve scans without a reference pose and are left out.";
+}
+
 /// Accepted closures the evaluation judged false, by (query first scan, reference first scan).
 std::set<std::pair<std::size_t, std::size_t>> FalseClosures(const nlohmann::json& metrics) {
     std::set<std::pair<std::size_t, std::size_t>> result;
@@ -209,6 +224,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
     input.ape_after = ApeSeries(state, state.corrected);
     input.metrics = ReadMetricsTable(metrics);
     input.revisits = ReadRevisitFindings(metrics);
+    input.evaluation_scope = EvaluationScope(metrics);
     if (metrics.is_object() && metrics.contains("closure_truth")) {
         input.true_closures = metrics["closure_truth"].value("true", 0);
         input.false_closures = metrics["closure_truth"].value("false", 0);

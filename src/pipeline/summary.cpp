@@ -105,13 +105,23 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
         out << "\n  (no reference poses: no metrics; give --gt FILE to evaluate)\n";
         return;
     }
-    if (!evaluation->closure_metrics) {
+    const bool partial = evaluation->reference_scans < state.odometry.size();
+    if (partial) {
         out << "\n  reference poses for " << evaluation->reference_scans << " of " << state.odometry.size()
-            << " scans: trajectory metrics on those only (no closure metrics)\n";
+            << " scans: trajectory metrics on those only\n";
+    }
+    if (!evaluation->closure_metrics) {
+        out << "  no local map lies wholly within the reference: no closure metrics\n";
         out << "\n  APE translation RMSE: "
             << DescribeApeChange(evaluation->odometry.ape.errors.translation_stats.rmse, evaluation->corrected.ape.errors.translation_stats.rmse)
             << '\n';
         return;
+    }
+    if (partial) {
+        out << "  closure metrics on " << evaluation->evaluated_scans << " of " << state.odometry.size() << " scans: the "
+            << evaluation->evaluated_maps << " of " << state.maps.size() << " local maps the reference covers whole\n"
+            << "  " << evaluation->left_out_closures << " closure candidates (" << evaluation->left_out_accepted
+            << " accepted) involve scans without a reference pose: left out\n";
     }
     out << "\n  ground truth: " << evaluation->gt_scan_pairs << " scan pairs in " << evaluation->gt_closing_segment_pairs
         << " closing segment pairs\n\n";

@@ -100,6 +100,9 @@ struct ReportInput {
     ErrorSeries ape_before;  ///< odometry against reference
     ErrorSeries ape_after;   ///< corrected against reference
     TextTable metrics;       ///< from the evaluation, already formatted
+    /// With a reference for some scans only: what the figures cover ("... 180 of 292 scans ..."); empty
+    /// when they cover the whole run.
+    std::string evaluation_scope;
     std::optional<RevisitFindings> revisits;  ///< with reference poses only
 
     /// On-demand data (each may be empty: the pictures that need it are then left out).

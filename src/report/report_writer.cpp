@@ -198,6 +198,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     AddErrorRanking(index, input, plan, 5);
 
     index.Heading("Metrics", 2, "metrics");
+    if (!input.evaluation_scope.empty()) index.Paragraph(input.evaluation_scope);
     if (!input.metrics.rows.empty()) index.Table(input.metrics.header, input.metrics.rows);
     if (!input.pr_curves.empty()) {
         WriteText(report_dir / "precision_recall.svg", PrCurvesSvg(input.pr_curves));

@@ -6,6 +6,7 @@ void AddRevisitSection(HtmlPage& index, const ReportInput& input) {
     if (!input.revisits) return;
     const RevisitFindings& findings = *input.revisits;
     index.Heading("Were the revisits found?", 2, "revisits");
+    if (!input.evaluation_scope.empty()) index.Paragraph(input.evaluation_scope);
     if (!findings.lines.empty()) index.List(findings.lines);
     if (!findings.funnel.rows.empty()) {
         index.Paragraph("Recall as a funnel: of the map pairs that the reference poses say overlap, how many each way of "

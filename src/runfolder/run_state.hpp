@@ -84,9 +84,10 @@ struct RunState {
     double wall_seconds = 0.0;
     std::size_t peak_rss_kb = 0;
 
-    /// A reference pose for every scan: what the closure metrics, the report and the sessions need.
+    /// A reference pose for every scan: what the report's reference pictures and the sessions need.
     bool has_reference() const { return !reference.empty() && reference.size() == odometry.size() && reference_scans.empty(); }
-    /// A reference for some scans only (reference_scans): the trajectory metrics use those.
+    /// A reference for some scans only (reference_scans): the trajectory metrics use those, the closure
+    /// metrics the local maps it covers whole (pipeline/covered_run.hpp).
     bool has_partial_reference() const { return !reference_scans.empty() && reference_scans.size() == reference.size(); }
     /// Closures in the final pose graph (the detector's and the proximity pass's).
     std::size_t NumAccepted() const;

@@ -51,6 +51,11 @@ TEST(ReferencePairingCli, ScansOutsideATumReferenceAreReportedAndLeftOut) {
     const auto metrics = ReadJson(dir / "run" / "metrics.json");
     EXPECT_EQ(metrics["reference"]["paired_scans"], 10);
     EXPECT_EQ(metrics["trajectory"]["odometry"]["ape_translation_m"]["count"], 10);
+    // The run's one local map holds all 16 scans: none lies wholly within the reference, so no closure
+    // metrics (partial_reference_test.cpp has a reference covering some maps whole).
+    EXPECT_EQ(metrics["reference"]["evaluated_maps"], 0);
+    EXPECT_FALSE(metrics.contains("methods"));
+    EXPECT_NE(r.output.find("no local map lies wholly within the reference: no closure metrics"), std::string::npos) << r.output;
     const auto info = ReadJson(dir / "run" / "run.json");
     EXPECT_EQ(info["reference_scans"], nlohmann::json({3, 4, 5, 6, 7, 8, 9, 10, 11, 12}));
     // `revisit eval` reads the same pairing back from the run folder.
