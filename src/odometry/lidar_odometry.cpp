@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -39,6 +40,7 @@ const OdometryConfig& Validated(const OdometryConfig& config) {
     require(config.max_correction > 0.0, "max_correction must be positive");
     require(config.degenerate_thickness >= 0.0, "degenerate_thickness must be >= 0");
     require(config.prior_bias_window > 0.0, "prior_bias_window must be positive");
+    require(config.map_travel_horizon >= 0.0, "map_travel_horizon must be >= 0 (0: off)");
     return config;
 }
 
@@ -135,8 +137,11 @@ double LidarOdometry::CorrectionLimit() const {
 
 void LidarOdometry::ApplyMapUpdate() {
     if (!map_update_pending_) return;
+    map_.SetStamp(map_update_travel_);
     map_.AddPoints(points_in_world_);
-    map_.RemoveFarFrom(map_update_origin_, map_update_radius_);
+    const double horizon = config_.map_travel_horizon;
+    map_.RemoveFarFrom(map_update_origin_, map_update_radius_,
+                       horizon > 0.0 ? map_update_travel_ - horizon : -std::numeric_limits<double>::infinity());
     map_update_pending_ = false;
 }
 
@@ -349,6 +354,8 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
         });
         map_update_pending_ = true;  // applied with the next frame's preprocessing (or on LocalMap())
         map_update_origin_ = T_new.translation();
+        travel_ += (last_pose.inverse() * T_new).translation().norm();
+        map_update_travel_ = travel_;
         map_update_radius_ = config_.max_range;
     }
     last_delta_ = Orthonormalized(last_pose.inverse() * T_new);

@@ -111,6 +111,8 @@ class LidarOdometry {
     bool map_update_pending_ = false;               ///< points_in_world_ not yet in the map
     Eigen::Vector3d map_update_origin_ = Eigen::Vector3d::Zero();  ///< [m] the frame's position
     double map_update_radius_ = 0.0;                ///< [m] the range then
+    double map_update_travel_ = 0.0;                ///< [m] the travel then
+    double travel_ = 0.0;                           ///< [m] path length of the registered frames
     OdometryFrameStats stats_;
     std::size_t num_degenerate_ = 0;
     double sum_squared_corrections_ = 0.0;  ///< [m^2] translation corrections of registered frames

@@ -58,6 +58,10 @@ struct OdometryConfig {
     bool correlative_start = true;
     double correlative_window = 1.5;               ///< [m] translations searched each way (x and y)
     double correlative_angular_window_deg = 45.0;  ///< [deg] rotations searched each way
+    /// [m] the map keeps only voxels a scan saw within this much travel (0: every voxel within range,
+    /// KISS-ICP). An earlier pass of the same place lies in the map where the odometry's drift put it,
+    /// and a scan that sees it again registers to that copy instead of to the scans just before.
+    double map_travel_horizon = 0.0;
     bool deskew = false;             ///< constant-velocity motion compensation of each sweep
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)

@@ -93,6 +93,7 @@ VoxelHashMap::VoxelHashMap(double voxel_size, int max_points_per_voxel)
       min_spacing2_(voxel_size * voxel_size / std::max(1, max_points_per_voxel)) {}
 
 bool VoxelHashMap::TryAddToSlot(std::size_t slot, const Eigen::Vector3d& point) {
+    seen_[slot] = stamp_;
     const int count = counts_[slot];
     if (count >= max_points_) return false;
     const Eigen::Vector3d* begin = points_.data() + slot * max_points_;
@@ -181,17 +182,18 @@ void VoxelHashMap::AddPoint(const Eigen::Vector3d& point, const Voxel& voxel) {
     }
     voxels_.push_back(voxel);
     counts_.push_back(1);
+    seen_.push_back(stamp_);
     points_.resize(points_.size() + max_points_);
     points_[static_cast<std::size_t>(it->second) * max_points_] = point;
 }
 
-void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance) {
+void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance, double oldest_kept) {
     const double max_distance2 = max_distance * max_distance;
     // The distance test in parallel; the swap-removal below is the serial one, so slots end up the same.
     far_.resize(voxels_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels_.size(), 8192), [&](const auto& range) {
         for (std::size_t slot = range.begin(); slot != range.end(); ++slot)
-            far_[slot] = (points_[slot * max_points_] - origin).squaredNorm() > max_distance2;
+            far_[slot] = (points_[slot * max_points_] - origin).squaredNorm() > max_distance2 || seen_[slot] < oldest_kept;
     });
     // Normals follow their voxels (a stale cache, e.g. enabled after points were added, is rebuilt).
     const bool has_normals = normals_enabled_ && normals_.size() == voxels_.size();
@@ -212,6 +214,7 @@ void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_dista
         if (slot != last) {
             voxels_[slot] = voxels_[last];
             counts_[slot] = counts_[last];
+            seen_[slot] = seen_[last];
             far_[slot] = far_[last];
             std::copy_n(points_.begin() + last * max_points_, counts_[last], points_.begin() + slot * max_points_);
             index_[voxels_[slot]] = static_cast<std::uint32_t>(slot);
@@ -228,6 +231,7 @@ void VoxelHashMap::RemoveFarFrom(const Eigen::Vector3d& origin, double max_dista
         }
         voxels_.pop_back();
         counts_.pop_back();
+        seen_.pop_back();
         far_.pop_back();
         points_.resize(points_.size() - max_points_);
     }
@@ -237,6 +241,7 @@ void VoxelHashMap::Clear() {
     index_.clear();
     voxels_.clear();
     counts_.clear();
+    seen_.clear();
     points_.clear();
     normals_.clear();
     normal_ok_.clear();

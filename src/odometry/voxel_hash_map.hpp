@@ -24,8 +24,13 @@ class VoxelHashMap {
     /// Adds world-frame points; order matters (the first points of a voxel are kept). Parallel, with
     /// the result of adding them one by one in order.
     void AddPoints(const std::vector<Eigen::Vector3d>& points);
-    /// Drops voxels whose first point is farther than `max_distance` [m] from `origin`.
-    void RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance);
+    /// Drops voxels whose first point is farther than `max_distance` [m] from `origin`, and those no
+    /// point fell in since the stamp `oldest_kept` (SetStamp).
+    void RemoveFarFrom(const Eigen::Vector3d& origin, double max_distance,
+                       double oldest_kept = -std::numeric_limits<double>::infinity());
+    /// The stamp (e.g. the travel [m]) the points added next carry: a voxel keeps the stamp of the
+    /// last point that fell in it, added or not (a voxel full of points still sees the scene).
+    void SetStamp(double stamp) { stamp_ = stamp; }
     void Clear();
 
     /// Nearest map point to `query` within the 27 voxels around it and strictly closer than
@@ -114,6 +119,8 @@ class VoxelHashMap {
     tsl::robin_map<Voxel, std::uint32_t, VoxelHash> index_;  ///< voxel -> slot
     std::vector<Voxel> voxels_;                              ///< slot -> voxel
     std::vector<std::uint16_t> counts_;                      ///< slot -> number of points
+    std::vector<double> seen_;                               ///< slot -> stamp of the last point that fell in it
+    double stamp_ = 0.0;
     std::vector<Eigen::Vector3d> points_;                    ///< slot * max_points_ + k
     bool normals_enabled_ = false;
     bool normals_in_plane_ = false;

@@ -72,6 +72,20 @@ TEST(VoxelHashMap, RemovesVoxelsFartherThanTheRadiusAndStaysSearchable) {
     }
 }
 
+TEST(VoxelHashMap, DropsVoxelsNoPointFellInSinceTheOldestKeptStamp) {
+    VoxelHashMap map(1.0, 1);  // one point per voxel: a voxel is full after its first point
+    map.SetStamp(0.0);
+    map.AddPoints({Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(5.5, 0.5, 0.5)});
+    map.SetStamp(10.0);
+    // Seen again (full, so nothing is added) and a new voxel.
+    map.AddPoints({Eigen::Vector3d(0.6, 0.6, 0.6), Eigen::Vector3d(9.5, 0.5, 0.5)});
+    map.RemoveFarFrom(Eigen::Vector3d::Zero(), 100.0, 5.0);
+    EXPECT_EQ(map.NumVoxels(), 2u);
+    EXPECT_NE(map.FindNearest(Eigen::Vector3d(0.5, 0.5, 0.5), 0.1), nullptr);
+    EXPECT_NE(map.FindNearest(Eigen::Vector3d(9.5, 0.5, 0.5), 0.1), nullptr);
+    EXPECT_EQ(map.FindNearest(Eigen::Vector3d(5.5, 0.5, 0.5), 0.1), nullptr);
+}
+
 TEST(VoxelDownsample, KeepsTheFirstPointOfEachVoxel) {
     const std::vector<Eigen::Vector3d> points = {{0.1, 0.1, 0.1}, {0.2, 0.2, 0.2}, {1.5, 0.1, 0.1}, {-0.1, 0.1, 0.1}};
     const auto kept = VoxelDownsample(points, 1.0);
