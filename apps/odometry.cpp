@@ -22,6 +22,7 @@ struct OdometryOptions {
 };
 
 int RunOdometry(const OdometryOptions& o) {
+    RefuseOutputInOrOverInput(o.dataset, o.out);  // before anything is read, even with --force
     const PipelineConfig config = ResolveConfigFor(o.config, o.dataset, std::cerr);
     const auto threads = LimitThreads(o.config.threads);
     const ReaderOptions reader_options = MakeReaderOptions(config.input);

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "core/owned_files.hpp"
 #include "pipeline/report_builder.hpp"
 #include "report/report_writer.hpp"
 #include "run_options.hpp"
@@ -29,6 +30,7 @@ int RunReport(const ReportOptions& o) {
 
 int RunInspect(const ReportOptions& o) {
     const RunFolder run = RunFolder::Open(o.run);
+    RefuseLinkedFolder(run.report_dir());  // the pages go into the run folder, not where a link points
     CheckRunDatabase(run);  // the pictures inspect draws are about the keypoints: no silent pages without them
     const ReportInput input = LoadReportInput(run);
     const ReportConfig config = RunReportConfig(run, {});

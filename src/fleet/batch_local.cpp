@@ -10,6 +10,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/atomic_file.hpp"
+
 extern char** environ;
 
 namespace revisit {
@@ -18,10 +20,13 @@ namespace {
 
 /// Starts `executable arguments...` with stdout and stderr into `log_file`; returns the child's pid.
 pid_t Spawn(const fs::path& executable, const std::vector<std::string>& arguments, const fs::path& log_file) {
+    // The log grows while the run works (users follow it), so it is not written through a temporary;
+    // whatever has its name is replaced, never written through (core/atomic_file.hpp).
+    const int log_fd = CreateFileExclusively(log_file);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     std::vector<std::string> words = {executable.string()};
     words.insert(words.end(), arguments.begin(), arguments.end());
@@ -31,6 +36,7 @@ pid_t Spawn(const fs::path& executable, const std::vector<std::string>& argument
     pid_t pid = 0;
     const int error = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    ::close(log_fd);
     if (error != 0) throw std::runtime_error("cannot start " + executable.string() + ": error " + std::to_string(error));
     return pid;
 }

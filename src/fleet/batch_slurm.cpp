@@ -92,11 +92,13 @@ std::string SlurmArrayScript(const BatchPlan& plan, const std::vector<std::size_
     s << "#SBATCH --array=";
     for (std::size_t i = 0; i < indices.size(); ++i) s << (i ? "," : "") << indices[i];
     s << "\n# One `revisit run` per manifest sequence; the task id is the sequence's index.\n"
-      << "set -u\n"
+      << "# A log's name is removed first and opened without clobbering (set -C): a link planted there is\n"
+      << "# replaced, never written through.\n"
+      << "set -uC\n"
       << "case \"$SLURM_ARRAY_TASK_ID\" in\n";
     for (const std::size_t i : indices) {
         const auto& task = plan.tasks[i];
-        s << "  " << i << ") exec " << ShellCommand(plan.executable, task.arguments) << " > " << ShellQuote(task.log.string())
+        s << "  " << i << ") rm -f -- " << ShellQuote(task.log.string()) << " && exec " << ShellCommand(plan.executable, task.arguments) << " > " << ShellQuote(task.log.string())
           << " 2>&1 ;;\n";
     }
     s << "esac\n"
@@ -109,8 +111,9 @@ std::string SlurmMergeScript(const BatchPlan& plan, const FleetConfig& fleet) {
     std::ostringstream s;
     s << Header("revisit-merge", plan.out / "logs" / "slurm_merge_%j.out", fleet, fleet.slurm_cpus_per_task)
       << "# The cross-session merge of every run; submitted with --dependency=afterok on the run array.\n"
-      << "exec " << ShellCommand(plan.executable, plan.merge_arguments) << " > " << ShellQuote(plan.merge_log.string())
-      << " 2>&1\n";
+      << "set -C\n"
+      << "rm -f -- " << ShellQuote(plan.merge_log.string()) << " && exec " << ShellCommand(plan.executable, plan.merge_arguments)
+      << " > " << ShellQuote(plan.merge_log.string()) << " 2>&1\n";
     return s.str();
 }
 

@@ -39,6 +39,19 @@ void RefuseOutputOverInput(const fs::path& input, const fs::path& output) {
     }
 }
 
+void RefuseOutputInOrOverInput(const fs::path& input, const fs::path& output) {
+    RefuseOutputOverInput(input, output);
+    std::error_code ec;
+    if (!fs::is_directory(input, ec)) return;
+    const fs::path in = fs::canonical(input, ec);
+    if (ec) return;
+    const fs::path out = fs::weakly_canonical(fs::absolute(output, ec), ec);
+    if (!ec && IsWithin(out, in)) {
+        throw DatasetError(output, "is inside the input " + input.string() +
+                                       "; writing there would add files to the input: choose an output folder outside it");
+    }
+}
+
 void PrepareOutputFile(const fs::path& file, bool force) {
     if (file.empty()) throw DatasetError(file, "no output file given");
     if (fs::exists(file) && !force) throw DatasetError(file, "file exists; choose another name or pass --force");

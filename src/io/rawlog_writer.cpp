@@ -8,6 +8,7 @@
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <unistd.h>
 #include <zlib.h>
 
 #include <cerrno>
@@ -35,8 +36,12 @@ class RawlogWriter final : public DatasetWriter {
         // the final close are checked (a full disk names the file) and only a complete rawlog is
         // renamed over `file` (core/atomic_file.hpp).
         temporary_.emplace(file);
-        out_ = gzopen(temporary_->path().c_str(), IsGzipName(file) ? "wb1" : "wbT");
-        if (!out_) throw DatasetError(file, "cannot open for writing");
+        const int fd = temporary_->ReleaseDescriptor();  // zlib owns and closes it from here
+        out_ = gzdopen(fd, IsGzipName(file) ? "wb1" : "wbT");
+        if (!out_) {
+            ::close(fd);
+            throw DatasetError(file, "cannot open for writing");
+        }
     }
     ~RawlogWriter() override {
         if (out_) gzclose(out_);  // without Finish(): abandoned, the temporary is removed by temporary_

@@ -15,6 +15,7 @@
 #include "core/allocator.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "io/output_folder.hpp"
 #include "io/prefetch_reader.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
@@ -119,6 +120,8 @@ RunOptions ReadRunOptions(const RunFolder& run) {
 
 RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log) {
     const auto run_start = Clock::now();
+    // Before anything is opened, even with --force: a run folder in the dataset would become part of it.
+    if (!options.out.empty()) RefuseOutputInOrOverInput(options.dataset, options.out);
     ReaderOptions reader_options = MakeReaderOptions(config.input);
     reader_options.allow_truncated = options.allow_truncated;
     // Open every input before creating the run folder: bad input fails without leaving anything behind.

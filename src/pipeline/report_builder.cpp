@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "closures/database_io.hpp"
+#include "core/owned_files.hpp"
 #include "core/png_size.hpp"
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
@@ -309,11 +310,8 @@ double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOp
     const auto start = std::chrono::steady_clock::now();
     const ReportConfig report_config = RunReportConfig(run, options.overrides);
     // report/ is regenerated: pages of an earlier report (or of `inspect`) would be stale and unlinked.
-    if (fs::is_directory(run.report_dir()))
-        for (const auto& file : fs::directory_iterator(run.report_dir())) {
-            const auto ext = file.path().extension();
-            if (file.is_regular_file() && (ext == ".html" || ext == ".png" || ext == ".svg")) fs::remove(file.path());
-        }
+    // Only the kinds of file the report writes go, never through a link (core/owned_files.hpp).
+    RemoveOwnFiles(run.report_dir(), {".html", ".png", ".svg"});
     const ReportInput input = LoadReportInput(run);
     // The database is read once, up front: a damaged one is reported even when no rendered page needs keypoints.
     if (!input.map_ids.empty() && input.load_keypoints) input.load_keypoints(input.map_ids.front());

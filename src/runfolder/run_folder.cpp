@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/owned_files.hpp"
 #include "io/output_folder.hpp"
 
 namespace revisit {
@@ -13,6 +14,9 @@ namespace fs = std::filesystem;
 
 RunFolder RunFolder::Create(const fs::path& root, bool force) {
     PrepareOutputFolder(root, force);
+    // With --force into an earlier folder: a linked subfolder would take the results outside the run.
+    RefuseLinkedFolder(root / "maps");
+    RefuseLinkedFolder(root / "report");
     fs::create_directories(root / "maps");
     return RunFolder(root);
 }

@@ -108,9 +108,11 @@ TEST(BatchSlurm, DryRunScriptsHaveTheExpectedContent) {
               "#SBATCH --partition=cpu\n"
               "#SBATCH --array=1\n"
               "# One `revisit run` per manifest sequence; the task id is the sequence's index.\n"
-              "set -u\n"
+              "# A log's name is removed first and opened without clobbering (set -C): a link planted there is\n"
+              "# replaced, never written through.\n"
+              "set -uC\n"
               "case \"$SLURM_ARRAY_TASK_ID\" in\n"
-              "  1) exec " + ShellCommand(plan.executable, plan.tasks[1].arguments) +
+              "  1) rm -f -- '/shared/fleet/logs/01_it'\\''s_10-99.log' && exec " + ShellCommand(plan.executable, plan.tasks[1].arguments) +
               " > '/shared/fleet/logs/01_it'\\''s_10-99.log' 2>&1 ;;\n"
               "esac\n"
               "echo \"revisit batch: no task $SLURM_ARRAY_TASK_ID\" >&2\n"
@@ -124,7 +126,9 @@ TEST(BatchSlurm, DryRunScriptsHaveTheExpectedContent) {
               "#SBATCH --mem=2000M\n"
               "#SBATCH --time=30\n"
               "# The cross-session merge of every run; submitted with --dependency=afterok on the run array.\n"
-              "exec " + ShellCommand(plan.executable, plan.merge_arguments) + " > '/shared/fleet/logs/merge.log' 2>&1\n");
+              "set -C\n"
+              "rm -f -- '/shared/fleet/logs/merge.log' && exec " + ShellCommand(plan.executable, plan.merge_arguments) +
+              " > '/shared/fleet/logs/merge.log' 2>&1\n");
     EXPECT_NE(SlurmArrayScript(plan, {0, 1}, fleet).find("#SBATCH --array=0,1\n"), std::string::npos);
 }
 

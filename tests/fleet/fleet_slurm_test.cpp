@@ -111,5 +111,31 @@ TEST(BatchLocal, RunsTheManifestOnThisMachineThenMerges) {
     EXPECT_GE(sessions["cross_closures"]["accepted"].get<int>(), 1);
 }
 
+TEST(BatchLocal, ALinkPlantedAtALogsNameIsReplacedNotWrittenThrough) {
+    auto& fleet = test::Fleet();
+    const fs::path work = fleet.dir() / "planted_logs";
+    const fs::path manifest = WriteManifest(work, fleet.City());
+    const std::string batch = "batch " + Quote(manifest.string()) + " --engine local --jobs 2 --set output.write_report=false";
+    const auto first = RunCli(batch + " --out " + Quote((work / "first").string()));
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    // The same log names in a fresh folder, each a link to a file of someone else's.
+    const fs::path victim = work / "precious.txt";
+    std::ofstream(victim) << "mine";
+    fs::create_directories(work / "second" / "logs");
+    std::size_t planted = 0;
+    for (const auto& log : fs::directory_iterator(work / "first" / "logs")) {
+        fs::create_symlink(victim, work / "second" / "logs" / log.path().filename());
+        ++planted;
+    }
+    ASSERT_GE(planted, 3u);  // two runs and the merge
+    const auto second = RunCli(batch + " --force --out " + Quote((work / "second").string()));
+    ASSERT_EQ(second.exit_code, 0) << second.output;
+    EXPECT_EQ(test::ReadFile(victim), "mine");
+    for (const auto& log : fs::directory_iterator(work / "second" / "logs")) {
+        EXPECT_FALSE(fs::is_symlink(log.symlink_status())) << log.path();
+        EXPECT_GT(fs::file_size(log.path()), 0u) << log.path();
+    }
+}
+
 }  // namespace
 }  // namespace revisit

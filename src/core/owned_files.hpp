@@ -1,0 +1,20 @@
+#pragma once
+/// The deleting discipline, the counterpart of core/atomic_file.hpp: revisit removes only regular
+/// files of the names it writes itself, in a folder it reaches without a symbolic link, and never
+/// anything through a link (a linked folder is refused, a linked file is left alone).
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+
+namespace revisit {
+
+/// Throws DatasetError naming `folder` when it is a symbolic link: writing or deleting there would
+/// touch a folder outside the run. A missing folder is fine (it is created as a real one).
+void RefuseLinkedFolder(const std::filesystem::path& folder);
+
+/// Removes the regular files directly in `folder` whose extension is one of `extensions` (".html").
+/// Refuses a linked `folder` (RefuseLinkedFolder); links, folders and other files in it are kept.
+/// Returns how many files were removed; throws DatasetError naming a file that cannot be removed.
+std::size_t RemoveOwnFiles(const std::filesystem::path& folder, std::initializer_list<const char*> extensions);
+
+}  // namespace revisit
