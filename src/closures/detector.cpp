@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -33,6 +34,7 @@ ClosureDetectorConfig ClosureDetectorConfig::Later() {
     config.min_matches = 3;
     config.min_inliers = 6;
     config.rematch = false;
+    config.rank_by_nearest = false;
     config.ransac.sampling = RansacSampling::kRandom;
     config.ransac.max_trials = 688;  // ceil(log(0.001) / log(1 - 0.1^2))
     config.ransac.weighted_sampling = false;
@@ -122,11 +124,26 @@ std::vector<Closure> ClosureDetector::AddMap(const LocalMap& map, MapFeatures fe
     const auto matches = tree_.Match(descriptors);
     std::vector<int> votes(records_.size(), 0);
     for (const auto& m : matches) ++votes[m.map_id];
+    // Each query descriptor matches the best descriptor of every map in its leaf, so every map of a
+    // large database collects a similar floor of votes. The ranking counts, per query descriptor, only
+    // the maps of its nearest match: evidence that concentrates on the map really seen again.
+    std::vector<int> nearest_votes(records_.size(), 0);
+    if (config_.rank_by_nearest) {
+        for (std::size_t begin = 0; begin < matches.size();) {
+            std::size_t end = begin;
+            std::int32_t best = std::numeric_limits<std::int32_t>::max();
+            for (; end < matches.size() && matches[end].query == matches[begin].query; ++end)
+                best = std::min(best, matches[end].distance);
+            for (std::size_t k = begin; k < end; ++k)
+                if (matches[k].distance == best) ++nearest_votes[matches[k].map_id];
+            begin = end;
+        }
+    }
     stats_.tree_ms = MsSince(start);
 
     start = Clock::now();
     std::vector<bool> skipped;
-    const auto candidates = SelectCandidates(votes, record, skipped);
+    const auto candidates = SelectCandidates(votes, nearest_votes, record, skipped);
     std::vector<int> slot(records_.size(), -1);
     for (std::size_t c = 0; c < candidates.size(); ++c) slot[candidates[c]] = int(c);
     std::vector<std::vector<TreeMatch>> grouped(candidates.size());
@@ -183,7 +200,8 @@ ComparisonStage ComparisonStageFromName(const std::string& name) {
     throw ConfigError("unknown comparison stage '" + name + "'");
 }
 
-std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int>& votes, const MapRecord& query,
+std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int>& votes, const std::vector<int>& nearest_votes,
+                                                           const MapRecord& query,
                                                            std::vector<bool>& skipped) const {
     // METHOD.md section 4: never compare with the most recent maps of the same session.
     std::vector<std::size_t> same_session;
@@ -204,7 +222,10 @@ std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int
     for (std::size_t i = 0; i < records_.size(); ++i) {
         if (!skip[i] && votes[i] > 0) eligible.push_back(i);
     }
-    std::stable_sort(eligible.begin(), eligible.end(), [&](std::size_t a, std::size_t b) { return votes[a] > votes[b]; });
+    std::stable_sort(eligible.begin(), eligible.end(), [&](std::size_t a, std::size_t b) {
+        if (config_.rank_by_nearest && nearest_votes[a] != nearest_votes[b]) return nearest_votes[a] > nearest_votes[b];
+        return votes[a] > votes[b];
+    });
     if (config_.selection == CandidateSelection::kTopHalf) {
         // Paper: the top N by votes, N = half the maps in the database.
         eligible.resize(std::min(eligible.size(), std::max<std::size_t>(1, records_.size() / 2)));

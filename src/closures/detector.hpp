@@ -39,11 +39,15 @@ struct ClosureDetectorConfig {
     /// descriptors instead of the tree's matches, which only see the one leaf each query descends to
     /// (the tree still votes and selects the candidates).
     bool rematch = true;
+    /// Beyond the paper: the top-half rule ranks maps by the votes of query descriptors whose nearest
+    /// match lies in them (ties and the min_matches gate: all votes).
+    bool rank_by_nearest = true;
     bool store_images = true;      ///< keep the density images (PNG-compressed) for reports and persistence
 
     static ClosureDetectorConfig Paper() {
         ClosureDetectorConfig config;
         config.rematch = false;
+        config.rank_by_nearest = false;
         return config;
     }
     /// The authors' later public code (v2.x) where it differs from the paper.
@@ -144,7 +148,7 @@ class ClosureDetector {
 
   private:
     /// `skipped` (out): per stored map, true when the skip-recent rule excluded it.
-    std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const MapRecord& query,
+    std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const std::vector<int>& nearest_votes, const MapRecord& query,
                                               std::vector<bool>& skipped) const;
     Closure Verify(const MapRecord& query, const std::vector<Descriptor>& query_descriptors, std::size_t ref_index,
                    const std::vector<TreeMatch>& matches) const;

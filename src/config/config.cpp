@@ -49,6 +49,8 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
           "share of a scan's points within a voxel of the map after ICP; fewer: the frame keeps the prediction (garbage, faults)", Range{0, 1});
     s.Add("odometry.turn_hypothesis", &o.turn_hypothesis, "",
           "when the predicted turn moves points by more than a voxel, also register without it and keep the better (swaying sensors)");
+    s.Add("odometry.ring_start", &o.ring_start, "",
+          "3D: point-to-plane until the motion is measured (a spinning sensor's ground rings pull a moving start to standing still)");
     s.Add("odometry.correlative_start", &o.correlative_start, "",
           "2D lasers: start the ICP from a correlative scan match (every frame without wheel odometry; with it, frames whose ICP failed)");
     s.Add("odometry.correlative_window", &o.correlative_window, "m", "translations the correlative match searches each way", Range{0.01, 100});
@@ -125,6 +127,7 @@ void BindFeaturesAndMatching(ConfigSchema& s, PipelineConfig& c) {
     s.Add("detector.inlier_pixels", &d.inlier_pixels, "px", "RANSAC inlier gate (paper: 3)", Range{0.1, 100});
     s.Add("detector.min_inliers", &d.min_inliers, "", "gamma: accept with this many inliers (paper: 10; later 6)", Range{2, 100000});
     s.Add("detector.rematch", &d.rematch, "", "beyond the paper: RANSAC on every mutual best descriptor match with the candidate, not only the tree's one-leaf matches");
+    s.Add("detector.rank_by_nearest", &d.rank_by_nearest, "", "beyond the paper: the top half ranked by the votes of each query descriptor's nearest match, not by every map's best in its leaf");
     s.Add("detector.store_images", &d.store_images, "", "keep density images in the database (reports, persistence)");
     auto& r = c.detector.ransac;
     s.AddEnum("ransac.sampling", &r.sampling, {{"exhaustive", RansacSampling::kExhaustive}, {"random", RansacSampling::kRandom}},

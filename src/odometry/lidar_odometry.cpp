@@ -21,7 +21,7 @@ namespace {
 constexpr std::size_t kAgreementSamples = 500;  ///< points checked for the agreement share
 /// Registrations with measured motion (the adaptive threshold's samples) before the map of the first
 /// scans covers the ground between its rings: with fewer, 3D frames register point-to-plane.
-constexpr std::size_t kMotionsMeasuredAtStart = 3;
+constexpr std::size_t kMotionsMeasuredAtStart = 2;
 
 const OdometryConfig& Validated(const OdometryConfig& config) {
     auto require = [](bool ok, const char* what) {
@@ -67,7 +67,7 @@ LidarOdometry::LidarOdometry(const OdometryConfig& config)
       prior_bias_(PriorBiasConfig{config.prior_bias_correction, config.prior_bias_window}) {
     // 2D scans have no planes in the map (a wall is a line): they stay point-to-point. A 3D map keeps
     // normals at least for the first registration (RegisterFrom: no motion known yet).
-    map_.EnableNormals(config.residual == IcpResidual::kPointToPlane || !config.planar, config.planar);
+    map_.EnableNormals(config.residual == IcpResidual::kPointToPlane || (config.ring_start && !config.planar), config.planar);
 }
 
 void LidarOdometry::SetMaxRange(double max_range) {
@@ -76,7 +76,7 @@ void LidarOdometry::SetMaxRange(double max_range) {
 }
 
 bool LidarOdometry::MotionUnmeasured() const {
-    return !config_.planar && !stats_.prior_used && threshold_.NumSamples() < kMotionsMeasuredAtStart;
+    return config_.ring_start && !config_.planar && !stats_.prior_used && threshold_.NumSamples() < kMotionsMeasuredAtStart;
 }
 
 Eigen::Isometry3d LidarOdometry::PredictMotion(const Scan& scan) {

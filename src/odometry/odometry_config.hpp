@@ -51,6 +51,9 @@ struct OdometryConfig {
     /// more than a voxel, keeping the better result (swaying handheld sensors; 2 ICPs on those frames;
     /// never with a wheel-odometry prior, which measures the turn).
     bool turn_hypothesis = true;
+    /// 3D: register point-to-plane until the motion is measured. A spinning sensor's ground rings snap
+    /// onto the last scan's under point-to-point at the start; patterns without rings do not need it.
+    bool ring_start = true;
     /// Planar mode: start the ICP from a correlative scan match (odometry/correlative_matcher.hpp) over
     /// the windows below around the prediction: on every frame without a wheel-odometry prior (key
     /// frames of a laser logged alone are up to ~1 m and 30 deg apart, far outside ICP's basin), and

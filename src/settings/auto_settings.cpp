@@ -45,7 +45,7 @@ std::string Number(double value, int digits = 2) {
 /// Choices stored as 0/1 that the schema takes as true/false.
 bool IsFlag(const std::string& key) {
     return key == "odometry.planar" || key == "odometry.deskew" || key == "ground.enabled" || key == "features.pad_border" ||
-           key == "evaluation.planar" || key == "local_map.carry_over" || key == "odometry.turn_hypothesis";
+           key == "evaluation.planar" || key == "local_map.carry_over" || key == "odometry.turn_hypothesis" || key == "detector.rematch" || key == "odometry.ring_start";
 }
 
 /// The value as the schema reads it: a name, true/false, or the number.
@@ -160,6 +160,9 @@ void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std
         // Small maps hold fewer keypoints: true candidates of walks show 6-9 inliers, false ones 3-5;
         // the 3D refinement and the consistency check verify what passes (later code: 6).
         choices.push_back({"detector.min_inliers", 6.0, {}, reason + ": fewer keypoints per map (later code: 6)"});
+        // That gate was measured on the tree's matches: verifying on every mutual match raises the false
+        // candidates' inliers too (3 false closures on the simulated indoor floor at 6 inliers).
+        choices.push_back({"detector.rematch", 0.0, {}, reason + ": the 6-inlier gate counts the tree's matches"});
         choices.push_back({"density.scaling", 0.0, "percentile", reason + ": robust image scaling"});
         choices.push_back({"features.min_keypoints", 150.0, {}, reason + ": adaptive keypoint budget"});
         choices.push_back({"features.pad_border", 1.0, {}, reason + ": keypoints near the image border"});
@@ -234,6 +237,11 @@ std::vector<SettingChoice> ChooseSettings(const DataProfile& p, const std::optio
                        p.rings > 1 ? std::to_string(p.rings) + " rings " + Number(p.ring_spacing_deg) + " deg apart" +
                                          (sparse_rings ? ": sparse on walls" : "")
                                    : std::string(p.planar ? "a 2D laser" : "no distinct rings")});
+    if (!p.planar) {
+        choices.push_back({"odometry.ring_start", p.rings > 1 ? 1.0 : 0.0, {},
+                           p.rings > 1 ? "ground rings: point-to-plane until the motion is measured"
+                                       : "no distinct rings: nothing snaps at the start"});
+    }
     ChooseClosureSettings(p, v, max_range, given_map_length, choices);
     return choices;
 }
