@@ -21,7 +21,7 @@ namespace {
 constexpr std::size_t kAgreementSamples = 500;  ///< points checked for the agreement share
 /// Registrations with measured motion (the adaptive threshold's samples) before the map of the first
 /// scans covers the ground between its rings: with fewer, 3D frames register point-to-plane.
-constexpr std::size_t kMotionsMeasuredAtStart = 2;
+constexpr std::size_t kMotionsMeasuredAtStart = 3;
 
 const OdometryConfig& Validated(const OdometryConfig& config) {
     auto require = [](bool ok, const char* what) {

@@ -61,8 +61,13 @@ TEST(Configs, PaperDetectorOverlayUndoesOnlyTheDetectorChanges) {
     EXPECT_EQ(layered.detector.min_matches, paper.detector.min_matches);
     EXPECT_EQ(layered.detector.skip_recent_maps, paper.detector.skip_recent_maps);
     EXPECT_DOUBLE_EQ(layered.detector.skip_recent_travel, paper.detector.skip_recent_travel);
-    // On the defaults (the paper) it changes nothing.
-    EXPECT_EQ(DumpConfig(LoadConfig({(kConfigs / "paper-detector.yaml").string()}, {})), DumpConfig(paper));
+    EXPECT_FALSE(layered.detector.rematch);
+    EXPECT_FALSE(layered.detector.rank_by_nearest);
+    // On the defaults it undoes only the two detector defaults beyond the paper.
+    PipelineConfig published;
+    published.detector.rematch = false;
+    published.detector.rank_by_nearest = false;
+    EXPECT_EQ(DumpConfig(LoadConfig({(kConfigs / "paper-detector.yaml").string()}, {})), DumpConfig(published));
 }
 
 TEST(Configs, OverridesComeLastAndUnknownKeysNameTheClosest) {
