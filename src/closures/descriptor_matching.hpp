@@ -1,6 +1,6 @@
 #pragma once
 /// Exhaustive matching of one map's descriptors against another's, for the geometric verification of a
-/// candidate the tree voted for (docs/method.md, "Matches for RANSAC").
+/// candidate the tree voted for (docs/method.md, section 6, 2D RANSAC).
 #include <vector>
 
 #include "closures/closure.hpp"

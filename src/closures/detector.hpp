@@ -148,8 +148,8 @@ class ClosureDetector {
 
   private:
     /// `skipped` (out): per stored map, true when the skip-recent rule excluded it.
-    std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const std::vector<int>& nearest_votes, const MapRecord& query,
-                                              std::vector<bool>& skipped) const;
+    std::vector<std::size_t> SelectCandidates(const std::vector<int>& votes, const std::vector<int>& nearest_votes,
+                                              const MapRecord& query, std::vector<bool>& skipped) const;
     Closure Verify(const MapRecord& query, const std::vector<Descriptor>& query_descriptors, std::size_t ref_index,
                    const std::vector<TreeMatch>& matches) const;
 

@@ -65,8 +65,8 @@ LidarOdometry::LidarOdometry(const OdometryConfig& config)
       map_(config.VoxelSize(), config.max_points_per_voxel),
       threshold_(config.initial_threshold, config.min_motion_th, config.max_range),
       prior_bias_(PriorBiasConfig{config.prior_bias_correction, config.prior_bias_window}) {
-    // 2D scans have no planes in the map (a wall is a line): they stay point-to-point. A 3D map keeps
-    // normals at least for the first registration (RegisterFrom: no motion known yet).
+    // 2D scans have no planes in the map (a wall is a line): they stay point-to-point. With ring_start a
+    // 3D map keeps normals until the motion is measured (MotionUnmeasured, RegisterFrom).
     map_.EnableNormals(config.residual == IcpResidual::kPointToPlane || (config.ring_start && !config.planar), config.planar);
 }
 
@@ -304,7 +304,6 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
         ApplyMapUpdate();
     }
     stats_.cropped_points = deskewed_.size();
-    const double voxel = config_.VoxelSize();
     const std::vector<Eigen::Vector3d>& source = source_;
     stats_.map_points = downsampled_.size();
     stats_.source_points = source.size();
@@ -362,7 +361,7 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
     last_T_odom_sensor_ = scan.T_odom_sensor;
     poses_.push_back(T_new);
     // Once the motion is measured, a map of many scans covers the ground between the rings.
-    if (config_.residual != IcpResidual::kPointToPlane && !config_.planar && !MotionUnmeasured()) map_.EnableNormals(false);
+    if (config_.residual != IcpResidual::kPointToPlane && !MotionUnmeasured()) map_.EnableNormals(false, config_.planar);
     return T_new;
 }
 

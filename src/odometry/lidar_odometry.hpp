@@ -77,10 +77,10 @@ class LidarOdometry {
     /// Points too few or within `degenerate_thickness` of a plane (3D) or a line (planar).
     std::string DegeneracyReason(const std::vector<Eigen::Vector3d>& points) const;
 
-    /// Source points within `radius` of a map point when placed at `T_world_sensor` (every `stride`-th
-    /// point checked, the count scaled back).
     /// A 3D frame without a prior before kMotionsMeasuredAtStart measured motions (RegisterFrom).
     bool MotionUnmeasured() const;
+    /// Source points within `radius` of a map point when placed at `T_world_sensor` (every `stride`-th
+    /// point checked, the count scaled back).
     std::size_t CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius,
                               std::size_t stride) const;
     /// The pose a correlative match of `source` against the map finds around the motion `delta` from

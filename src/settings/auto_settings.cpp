@@ -45,7 +45,8 @@ std::string Number(double value, int digits = 2) {
 /// Choices stored as 0/1 that the schema takes as true/false.
 bool IsFlag(const std::string& key) {
     return key == "odometry.planar" || key == "odometry.deskew" || key == "ground.enabled" || key == "features.pad_border" ||
-           key == "evaluation.planar" || key == "local_map.carry_over" || key == "odometry.turn_hypothesis" || key == "detector.rematch" || key == "odometry.ring_start";
+           key == "evaluation.planar" || key == "local_map.carry_over" || key == "odometry.turn_hypothesis" ||
+           key == "odometry.ring_start" || key == "detector.rematch";
 }
 
 /// The value as the schema reads it: a name, true/false, or the number.
