@@ -37,6 +37,7 @@ int RunRun(RunCommandOptions& o) {
     const auto threads = LimitThreads(o.config.threads);
     if (o.poses == "odometry") o.run.poses = PoseSource::kOdometry;
     else if (o.poses == "dataset") o.run.poses = PoseSource::kDataset;
+    else if (o.poses == "prior") o.run.poses = PoseSource::kPrior;
     else {
         o.run.poses = PoseSource::kFile;
         o.run.poses_file = o.poses;
@@ -80,7 +81,7 @@ void AddRunCommand(CLI::App& root, Action& action) {
     cmd->add_option("--topic", "ROS bags: the scan topic (sets input.topic)")
         ->each([o](const std::string& topic) { o->config.overrides.push_back("input.topic=" + topic); });
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
-    cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its poses) or a KITTI/TUM FILE")->capture_default_str();
+    cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its reference poses), prior (use its odometry prior, e.g. wheel odometry, as it is) or a KITTI/TUM FILE")->capture_default_str();
     cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI, TUM or sec,nsec,x,y,z,qx,qy,qz,qw CSV) for evaluation");
     cmd->add_option("--from", o->from, "first scan index to use");
     cmd->add_option("--to", o->to, "last scan index to use (inclusive)")->each([o](const std::string&) { o->has_to = true; });

@@ -43,4 +43,18 @@ std::vector<ScoredPair> ExpandMapClosures(const std::vector<MapClosureForEval>& 
     return predicted;
 }
 
+std::size_t CountPairsWithinTau(const std::vector<ScanPair>& ground_truth, const Poses& T_world_sensor,
+                                const PredictedClosureConfig& config) {
+    std::size_t within = 0;
+    for (const auto& pair : ground_truth) {
+        if (pair.second >= T_world_sensor.size())
+            throw ConfigError("ground-truth scan pair " + std::to_string(pair.first) + "," + std::to_string(pair.second) +
+                              " outside the " + std::to_string(T_world_sensor.size()) + " reference poses");
+        Eigen::Vector3d delta = T_world_sensor[pair.second].translation() - T_world_sensor[pair.first].translation();
+        if (config.planar) delta.z() = 0.0;
+        within += delta.norm() < config.max_distance;
+    }
+    return within;
+}
+
 }  // namespace revisit

@@ -21,4 +21,10 @@ struct PredictedClosureConfig {
 std::vector<ScoredPair> ExpandMapClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_odom_sensor,
                                           const PredictedClosureConfig& config);
 
+/// The ground-truth scan pairs whose reference positions lie closer than tau_d: the most a map-level
+/// method can predict under this protocol, even with perfect alignments (the overlap criterion of the
+/// ground truth admits pairs farther apart). Their share of `ground_truth` bounds the recall.
+std::size_t CountPairsWithinTau(const std::vector<ScanPair>& ground_truth, const Poses& T_world_sensor,
+                                const PredictedClosureConfig& config);
+
 }  // namespace revisit

@@ -197,7 +197,9 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
                            {"ape_rmse_after_m", m.ape_rmse_after ? json(*m.ape_rmse_after) : json(nullptr)}});
     }
     json metrics = {
-        {"ground_truth", {{"segments", e.gt_segments}, {"closing_segment_pairs", e.gt_closing_segment_pairs}, {"scan_pairs", e.gt_scan_pairs}}},
+        {"ground_truth", {{"segments", e.gt_segments}, {"closing_segment_pairs", e.gt_closing_segment_pairs}, {"scan_pairs", e.gt_scan_pairs},
+                          {"scan_pairs_within_tau_d", e.gt_pairs_within_tau},
+                          {"recall_ceiling", e.gt_scan_pairs ? double(e.gt_pairs_within_tau) / e.gt_scan_pairs : 0.0}}},
         {"methods", methods},
         {"map_level", {{"assessed_closures", e.map_metrics.closures.size()}, {"right_map_fraction", e.map_metrics.fraction_right},
                        {"translation_error_m", StatsJson(e.map_metrics.translation_error)},
@@ -234,6 +236,8 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
     e.gt_segments = gt.segments.size();
     e.gt_closing_segment_pairs = gt.segment_pairs.size();
     e.gt_scan_pairs = gt.scan_pairs.size();
+    e.gt_pairs_within_tau = CountPairsWithinTau(gt.scan_pairs, state.reference, config.predicted);
+    e.tau_d = config.predicted.max_distance;
 
     const auto density = ForEval(state, "density");
     e.sweeps["density"] = ScoreMapClosures(density, state.odometry, gt.scan_pairs, config.predicted);

@@ -35,6 +35,8 @@ struct RunEvaluation {
     std::size_t gt_segments = 0;
     std::size_t gt_closing_segment_pairs = 0;
     std::size_t gt_scan_pairs = 0;
+    std::size_t gt_pairs_within_tau = 0;  ///< of those, closer than tau_d by the reference: the recall ceiling
+    double tau_d = 0.0;                   ///< [m] evaluation.tau_d
     std::map<std::string, PrSweepResult> sweeps;  ///< per method
     std::vector<MethodSummary> methods;
     MapMetrics map_metrics;

@@ -59,6 +59,7 @@ const char* PoseSourceName(PoseSource source) {
     switch (source) {
         case PoseSource::kOdometry: return "odometry";
         case PoseSource::kDataset: return "dataset";
+        case PoseSource::kPrior: return "prior";
         default: return "file";
     }
 }
@@ -105,7 +106,10 @@ RunOptions ReadRunOptions(const RunFolder& run) {
         RunOptions o;
         o.dataset = j.at("dataset").get<std::string>();
         const std::string poses = j.at("poses").get<std::string>();
-        o.poses = poses == "odometry" ? PoseSource::kOdometry : poses == "dataset" ? PoseSource::kDataset : PoseSource::kFile;
+        o.poses = poses == "odometry" ? PoseSource::kOdometry
+                  : poses == "dataset"  ? PoseSource::kDataset
+                  : poses == "prior"    ? PoseSource::kPrior
+                                        : PoseSource::kFile;
         o.poses_file = j.at("poses_file").get<std::string>();
         o.gt_file = j.at("gt_file").get<std::string>();
         o.from = j.at("from").get<std::size_t>();
@@ -226,6 +230,11 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
             if (!scan.T_world_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan.index) +
                                                                               " has no reference pose; use --poses odometry");
             posed.T_world_sensor = *scan.T_world_sensor;
+            posed.points = std::move(scan.points);
+        } else if (options.poses == PoseSource::kPrior) {
+            if (!scan.T_odom_sensor) throw DatasetError(options.dataset, "scan " + std::to_string(scan.index) +
+                                                                             " has no odometry prior; use --poses odometry");
+            posed.T_world_sensor = *scan.T_odom_sensor;
             posed.points = std::move(scan.points);
         } else {
             posed.T_world_sensor = pose_file.Required(scan.index, scan.timestamp);

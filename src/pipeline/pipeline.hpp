@@ -14,6 +14,7 @@ namespace revisit {
 enum class PoseSource {
     kOdometry,  ///< our LiDAR odometry
     kDataset,   ///< the dataset's reference poses
+    kPrior,     ///< the dataset's odometry prior (wheel odometry, a bag's odometry topic) as it is
     kFile,      ///< a KITTI or TUM trajectory file
 };
 

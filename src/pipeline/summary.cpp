@@ -124,7 +124,16 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
             << " accepted) involve scans without a reference pose: left out\n";
     }
     out << "\n  ground truth: " << evaluation->gt_scan_pairs << " scan pairs in " << evaluation->gt_closing_segment_pairs
-        << " closing segment pairs\n\n";
+        << " closing segment pairs\n";
+    if (evaluation->gt_scan_pairs > 0) {
+        // The ground truth counts overlapping scans, the prediction pairs closer than tau_d: say how
+        // much recall the protocol leaves to a map-level method at all.
+        out << "  recall ceiling: " << std::setprecision(3)
+            << double(evaluation->gt_pairs_within_tau) / double(evaluation->gt_scan_pairs) << " ("
+            << evaluation->gt_pairs_within_tau << " of them lie within tau_d = " << std::defaultfloat
+            << evaluation->tau_d << std::fixed << " m, the most a map closure can predict)\n";
+    }
+    out << '\n';
     out << "  method            precision  recall     F1   R@100%P   APE before [m]  APE after [m]\n";
     for (const auto& m : evaluation->methods) {
         out << "  " << std::left << std::setw(16) << m.method << std::right << std::setprecision(3) << std::setw(11)

@@ -1,6 +1,7 @@
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/predicted_closures.hpp"
 
+#include "core/error.hpp"
 #include "core/se3.hpp"
 
 #include <gtest/gtest.h>
@@ -64,6 +65,32 @@ TEST(ExpandMapClosures, UsesTheRelativePoseDirection) {
     const auto pairs = ExpandMapClosures({closure}, Odometry(), config);
     ASSERT_EQ(pairs.size(), 1u);
     EXPECT_EQ(pairs[0].pair, (ScanPair{0, 10}));
+}
+
+TEST(CountPairsWithinTau, OnlyPairsAPerfectMapClosureCanPredict) {
+    // Reference: scans 0-2 and 10-12 as in Odometry(), but the query map laid 3 m beside the
+    // reference map in the world. Ground truth (overlap-based) holds all nine pairs across the maps.
+    Poses reference(13, Eigen::Isometry3d::Identity());
+    for (int k = 0; k < 3; ++k) {
+        reference[k] = PoseFromXYZRPY(k, 0, 0, 0, 0, 0);
+        reference[10 + k] = PoseFromXYZRPY(k, 3, 0.5, 0, 0, 0);
+    }
+    std::vector<ScanPair> ground_truth;
+    for (std::size_t r = 0; r < 3; ++r)
+        for (std::size_t q = 10; q < 13; ++q) ground_truth.push_back({r, q});
+    PredictedClosureConfig config;
+    config.max_distance = 3.5;
+    config.planar = true;  // sqrt((r - q)^2 + 9) < 3.5: |r - q| <= 1
+    EXPECT_EQ(CountPairsWithinTau(ground_truth, reference, config), 7u);
+    // A closure with the exact relative pose predicts exactly those: the count is the recall ceiling.
+    const auto closure = Closure(PoseFromXYZRPY(0, -3, -0.5, 0, 0, 0), 10);
+    EXPECT_EQ(ExpandMapClosures({closure}, reference, config).size(), 7u);
+    config.planar = false;  // the 0.5 m height counts: sqrt(1 + 9 + 0.25) < 3.5 still, sqrt(4 + 9.25) not
+    EXPECT_EQ(CountPairsWithinTau(ground_truth, reference, config), 7u);
+    config.max_distance = 3.1;  // only |r - q| = 0 in 3D (3.04 m), in the plane 3 m < 3.1 too
+    EXPECT_EQ(CountPairsWithinTau(ground_truth, reference, config), 3u);
+    ground_truth.push_back({2, 13});
+    EXPECT_THROW(CountPairsWithinTau(ground_truth, reference, config), ConfigError);
 }
 
 TEST(EvaluateMapClosures, RightMapAndPoseError) {

@@ -10,6 +10,7 @@
 #include "cli.hpp"
 #include "read_all.hpp"
 #include "config/config.hpp"
+#include "io/trajectory_io.hpp"
 #include "runfolder/run_files.hpp"
 #include "sim_dataset.hpp"
 
@@ -146,6 +147,37 @@ TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
     unsetenv("REVISIT_SHARE_DIR");
     EXPECT_EQ(no_templates.exit_code, 1) << no_templates.output;
     EXPECT_NE(no_templates.output.find(nowhere), std::string::npos) << no_templates.output;
+}
+
+TEST(CliRun, PosesPriorTakesTheRecordedOdometryAsItIs) {
+    // A drifting prior, used as the trajectory: no registration, the closures alone must correct it.
+    test::TempDir dir;
+    const fs::path rawlog = dir / "drift.rawlog";
+    const auto sim = RunCli("simulate --preset indoor-2d-360 --scans 60 --quiet --odometry-scale-bias 0.05 --out " +
+                            Quote(rawlog.string()));
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    const fs::path out = dir / "run";
+    const auto run = RunCli("run " + Quote(rawlog.string()) + " --poses prior --quiet --set output.write_report=false --out " +
+                            Quote(out.string()));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto scans = test::ReadAllScans(rawlog);
+    const Trajectory written = ReadTumPoses(out / "poses_odometry_tum.txt");
+    ASSERT_EQ(written.poses.size(), scans.size());
+    ASSERT_TRUE(scans.front().T_odom_sensor);
+    double largest = 0.0;
+    for (std::size_t k = 0; k < scans.size(); ++k) {
+        ASSERT_TRUE(scans[k].T_odom_sensor);
+        largest = std::max(largest, (scans[k].T_odom_sensor->translation() - written.poses[k].translation()).norm());
+    }
+    EXPECT_LT(largest, 1e-6) << "the prior, not a registration, is the trajectory";
+    std::ifstream options(out / "run_options.json");
+    EXPECT_EQ(nlohmann::json::parse(options).at("poses"), "prior");
+    // A dataset without a prior: a named error.
+    const fs::path folder = dir / "kitti";
+    ASSERT_EQ(RunCli("simulate --preset demo --scans 3 --quiet --out " + Quote(folder.string())).exit_code, 0);
+    const auto none = RunCli("run " + Quote(folder.string()) + " --poses prior --quiet --out " + Quote((dir / "none").string()));
+    EXPECT_NE(none.exit_code, 0);
+    EXPECT_NE(none.output.find("has no odometry prior"), std::string::npos) << none.output;
 }
 
 TEST(CliSimulate, StrongOdometryDriftIsWrittenIntoTheRawlogPrior) {
