@@ -80,13 +80,15 @@ void ClosureStageCases(const CaseContext& c) {
         const auto query = ComputeMapFeatures(Moved(map, PoseFromXYZRPY(6.0, -4.0, 0, 0, 0, 0.7)), config);
         HammingTree tree(config.tree);
         tree.Add(ref.features.descriptors, 0);
+        // A match as RANSAC sees it: both keypoints in metres, weighted by the descriptor distance.
+        const auto point_pair = [&](std::int32_t query_keypoint, std::int32_t ref_keypoint, std::int32_t distance) {
+            const auto& kr = ref.features.keypoints[std::size_t(ref_keypoint)];
+            const auto& kq = query.features.keypoints[std::size_t(query_keypoint)];
+            return PointPair{ref.density.ToMetric(kr.x(), kr.y()), query.density.ToMetric(kq.x(), kq.y()),
+                             double(config.tree.max_distance - distance)};
+        };
         std::vector<PointPair> pairs;
-        for (const auto& m : tree.Match(query.features.descriptors)) {
-            const auto& kr = ref.features.keypoints[std::size_t(m.keypoint)];
-            const auto& kq = query.features.keypoints[std::size_t(m.query)];
-            pairs.push_back({ref.density.ToMetric(kr.x(), kr.y()), query.density.ToMetric(kq.x(), kq.y()),
-                             double(config.tree.max_distance - m.distance)});
-        }
+        for (const auto& m : tree.Match(query.features.descriptors)) pairs.push_back(point_pair(m.query, m.keypoint, m.distance));
         if (pairs.size() < 2) {
             c.Skip("closures/RANSAC " + label + ": fewer than 2 matches");
             continue;
@@ -112,12 +114,7 @@ void ClosureStageCases(const CaseContext& c) {
                     const auto matches = MatchMutualBest(query.features.descriptors, ref.features.descriptors,
                                                          config.tree.max_distance);
                     std::vector<PointPair> mutual;
-                    for (const auto& m : matches) {
-                        const auto& kr = ref.features.keypoints[std::size_t(m.ref_keypoint)];
-                        const auto& kq = query.features.keypoints[std::size_t(m.query_keypoint)];
-                        mutual.push_back({ref.density.ToMetric(kr.x(), kr.y()), query.density.ToMetric(kq.x(), kq.y()),
-                                          double(config.tree.max_distance - m.distance)});
-                    }
+                    for (const auto& m : matches) mutual.push_back(point_pair(m.query_keypoint, m.ref_keypoint, m.distance));
                     matched = mutual.size();
                     std::mt19937 rng(config.ransac.seed);
                     rematched = mutual.size() < 2 ? 0 : AlignRansac2D(mutual, config.ransac, rng).num_inliers;

@@ -199,7 +199,7 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
     json metrics = {
         {"ground_truth", {{"segments", e.gt_segments}, {"closing_segment_pairs", e.gt_closing_segment_pairs}, {"scan_pairs", e.gt_scan_pairs},
                           {"scan_pairs_within_tau_d", e.gt_pairs_within_tau},
-                          {"recall_ceiling", e.gt_scan_pairs ? double(e.gt_pairs_within_tau) / e.gt_scan_pairs : 0.0}}},
+                          {"recall_ceiling", e.recall_ceiling()}}},
         {"methods", methods},
         {"map_level", {{"assessed_closures", e.map_metrics.closures.size()}, {"right_map_fraction", e.map_metrics.fraction_right},
                        {"translation_error_m", StatsJson(e.map_metrics.translation_error)},

@@ -37,6 +37,8 @@ struct RunEvaluation {
     std::size_t gt_scan_pairs = 0;
     std::size_t gt_pairs_within_tau = 0;  ///< of those, closer than tau_d by the reference: the recall ceiling
     double tau_d = 0.0;                   ///< [m] evaluation.tau_d
+    /// The share of ground-truth pairs within tau_d: the most recall a map-level method can score.
+    double recall_ceiling() const { return gt_scan_pairs ? double(gt_pairs_within_tau) / double(gt_scan_pairs) : 0.0; }
     std::map<std::string, PrSweepResult> sweeps;  ///< per method
     std::vector<MethodSummary> methods;
     MapMetrics map_metrics;

@@ -128,8 +128,7 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     if (evaluation->gt_scan_pairs > 0) {
         // The ground truth counts overlapping scans, the prediction pairs closer than tau_d: say how
         // much recall the protocol leaves to a map-level method at all.
-        out << "  recall ceiling: " << std::setprecision(3)
-            << double(evaluation->gt_pairs_within_tau) / double(evaluation->gt_scan_pairs) << " ("
+        out << "  recall ceiling: " << std::setprecision(3) << evaluation->recall_ceiling() << " ("
             << evaluation->gt_pairs_within_tau << " of them lie within tau_d = " << std::defaultfloat
             << evaluation->tau_d << std::fixed << " m, the most a map closure can predict)\n";
     }
