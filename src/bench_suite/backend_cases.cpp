@@ -1,5 +1,6 @@
 /// Back-end cases: refinement per closure, the pose graph over a (nodes x closures) grid, the online
-/// closure-consistency check per map, ground-truth closure generation per scan, and report rendering per closure.
+/// closure-consistency check per map, ground-truth closure generation and the ScanContext baseline's
+/// search per scan, and report rendering per closure.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -7,6 +8,7 @@
 #include "bench_suite/cases.hpp"
 #include "core/se3.hpp"
 #include "evaluation/ground_truth_closures.hpp"
+#include "evaluation/scan_context.hpp"
 #include "optimization/closure_consistency.hpp"
 #include "optimization/map_overlap.hpp"
 #include "optimization/pose_graph.hpp"
@@ -174,6 +176,31 @@ void GroundTruthCases(const CaseContext& c) {
         c.Add(std::move(measured), "ComputeGroundTruthClosures, " + std::to_string(route.size()) +
                                        " scans over a 400 m loop (" + label + " cycled), " + std::to_string(closures) +
                                        " closing segment pairs");
+    }
+}
+
+void ScanContextCases(const CaseContext& c) {
+    // Synthetic descriptors of a drive: each scan's bins a small step from the one before, so the ring
+    // keys spread as a sequence's do. The figure per scan must not grow with the sequence.
+    const ScanContextConfig config;
+    for (const std::size_t n : c.scale.scan_context_scans) {
+        std::mt19937 rng(7);
+        std::normal_distribution<float> step(0.0f, 0.1f);
+        std::vector<ScanContextDescriptor> descriptors(n);
+        Eigen::MatrixXf bins = Eigen::MatrixXf::Constant(config.num_rings, config.num_sectors, 1.0f);
+        for (auto& d : descriptors) {
+            for (Eigen::Index k = 0; k < bins.size(); ++k) bins(k) = std::max(0.0f, bins(k) + step(rng));
+            d.bins = bins;
+            d.ring_key = bins.rowwise().mean();
+            d.sector_key = bins.colwise().mean().transpose();
+        }
+        std::size_t candidates = 0;
+        Measurement measured = Measure("scan_context/search", "ms/scan", FigureKind::kMsPerItem, Heavy(c.scale), [&] {
+            candidates = SearchScanContext(descriptors, config).size();
+            return double(n);
+        });
+        c.Add(std::move(measured), "SearchScanContext over " + std::to_string(n) + " synthetic descriptors, " +
+                                       std::to_string(candidates) + " candidates verified");
     }
 }
 

@@ -44,6 +44,8 @@ void FleetTreeCases(const CaseContext& c);
 void RefinementCases(const CaseContext& c);
 void PoseGraphCases(const CaseContext& c);
 void GroundTruthCases(const CaseContext& c);
+/// The ScanContext baseline's candidate search per scan, at several sequence lengths.
+void ScanContextCases(const CaseContext& c);
 void ConsistencyCases(const CaseContext& c);
 void ProximityCases(const CaseContext& c);  ///< the proximity pass's overlap prediction per map
 void ReportCases(const CaseContext& c);

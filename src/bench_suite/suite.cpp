@@ -22,6 +22,7 @@ const CaseGroup kGroups[] = {
     {"local_map", LocalMapCases},    {"closures", ClosureStageCases}, {"tree", TreeCases},
     {"fleet_tree", FleetTreeCases},
     {"refinement", RefinementCases}, {"pose_graph", PoseGraphCases},  {"ground_truth", GroundTruthCases},
+    {"scan_context", ScanContextCases},
     {"consistency", ConsistencyCases}, {"proximity", ProximityCases}, {"report", ReportCases},
 };
 
@@ -48,6 +49,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.graph_grid = {{300, 10}};
         s.consistency_maps = 100;
         s.gt_scans = 60;
+        s.scan_context_scans = {500, 2000};
         s.report_closures = 1;
         s.end_to_end_scans = 12;
     } else if (suite == "quick") {
@@ -59,6 +61,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.tree_queries = 20;
         s.graph_grid = {{500, 50}, {2000, 200}};
         s.gt_scans = 600;
+        s.scan_context_scans = {5000, 20000};
         s.report_closures = 3;
         s.end_to_end_scans = 300;
     } else if (suite == "full") {
@@ -70,6 +73,7 @@ SuiteScale ScaleOf(const std::string& suite) {
         s.tree_queries = 30;
         s.graph_grid = {{500, 50}, {2000, 50}, {2000, 200}, {2000, 1000}, {10000, 200}, {10000, 1000}};
         s.gt_scans = 2000;
+        s.scan_context_scans = {10000, 40000, 100000};
         s.report_closures = 10;
         s.end_to_end_scans = 0;  // the whole ~3 km route with its revisits
         s.end_to_end_repetitions = 2;

@@ -24,6 +24,7 @@ struct SuiteScale {
     std::vector<std::pair<int, int>> graph_grid;  ///< pose graph (nodes, closures)
     int consistency_maps = 1000;                  ///< maps of the online closure-consistency case
     std::size_t gt_scans = 300;                   ///< scans of the ground-truth closure case
+    std::vector<std::size_t> scan_context_scans;  ///< sequence lengths of the ScanContext search case [scans]
     int report_closures = 5;                      ///< closure pages rendered
     std::size_t end_to_end_scans = 150;           ///< 64-beam city scans through `revisit run`; 0: the whole route
     int end_to_end_repetitions = 1;               ///< runs of the whole chain (no warm-up)

@@ -1,6 +1,7 @@
 #include "evaluation/scan_context.hpp"
 
 #include "core/error.hpp"
+#include "evaluation/ring_key_index.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -118,19 +119,16 @@ std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContex
                                                     const ScanContextConfig& config) {
     CheckConfig(config);
     const std::size_t n = descriptors.size();
+    std::vector<Eigen::VectorXf> ring_keys(n);
+    for (std::size_t s = 0; s < n; ++s) ring_keys[s] = descriptors[s].ring_key;
+    const RingKeyIndex index(ring_keys, n);
     std::vector<std::vector<ScanContextCandidate>> per_query(n);
     tbb::parallel_for(config.exclude_recent, std::max(n, config.exclude_recent), [&](std::size_t q) {
         // SCManager counts queries from the first that passes the size check and rebuilds every period.
         const std::size_t counter = q - config.exclude_recent;
         const std::size_t rebuilt_at = config.exclude_recent + (counter / config.rebuild_period) * config.rebuild_period;
         const std::size_t searchable = rebuilt_at + 1 - config.exclude_recent;
-        std::vector<std::pair<double, std::size_t>> by_key(searchable);
-        for (std::size_t s = 0; s < searchable; ++s)
-            by_key[s] = {(descriptors[q].ring_key - descriptors[s].ring_key).squaredNorm(), s};
-        const std::size_t k = std::min(config.num_candidates, searchable);
-        std::partial_sort(by_key.begin(), by_key.begin() + static_cast<std::ptrdiff_t>(k), by_key.end());
-        for (std::size_t c = 0; c < k; ++c) {
-            const std::size_t s = by_key[c].second;
+        for (const auto& [squared, s] : index.Nearest(ring_keys[q], searchable, config.num_candidates)) {
             const ScanContextMatch match = ScanContextDistance(descriptors[q], descriptors[s], config);
             per_query[q].push_back({q, s, match.distance, match.shift});
         }

@@ -52,8 +52,8 @@ struct ScanContextCandidate {
 /// Every candidate of every query over a sequence of descriptors, in query order. Scan q is queried
 /// when q >= exclude_recent; its search set is scans [0, b + 1 - exclude_recent) where b is the scan
 /// of the last rebuild (every rebuild_period queries), as SCManager's k-d tree. The search is an exact
-/// brute-force k nearest neighbours over ring keys (the same neighbours as the exact k-d tree; ties by
-/// lower index), parallel over queries.
+/// k nearest neighbours over ring keys in k-d trees (RingKeyIndex; ties by lower index), parallel
+/// over queries.
 std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContextDescriptor>& descriptors,
                                                     const ScanContextConfig& config);
 

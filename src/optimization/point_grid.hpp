@@ -1,7 +1,7 @@
 #pragma once
 /// Nearest-neighbour search and voxel overlap on plain point clouds (voxel keys and
 /// downsampling: core/voxel.hpp).
-/// A hashed uniform grid stands in for a k-d tree (nanoflann is not a dependency):
+/// A hashed uniform grid, not a k-d tree:
 /// ICP only ever asks for neighbours within a fixed radius, which a grid answers in O(1).
 #include <Eigen/Core>
 #include <algorithm>

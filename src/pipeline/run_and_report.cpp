@@ -4,6 +4,7 @@
 #include "pipeline/interrupt.hpp"
 #include "pipeline/report_builder.hpp"
 #include "pipeline/summary.hpp"
+#include "runfolder/run_files.hpp"
 
 #include <chrono>
 
@@ -16,7 +17,9 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
     PostRunSeconds after_chain;
     if (state.complete) {
         const auto start = std::chrono::steady_clock::now();
-        evaluation = EvaluateRun(run, state, options, config, log);
+        // From the run folder as written, as `revisit eval` reads it: the poses' files hold 9 decimals,
+        // so the metrics (and the ground truth's cache key) are the ones a later eval recomputes.
+        evaluation = EvaluateRun(run, ReadRunState(run), options, config, log);
         after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         // Ctrl-C after the chain: the run folder is complete; the report is skipped, or said to be partial.
         if (config.output.write_report && !InterruptRequested()) after_chain.report = WriteRunReport(run, log, {options.quiet, {}});

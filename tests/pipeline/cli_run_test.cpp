@@ -9,6 +9,7 @@
 
 #include "cli.hpp"
 #include "read_all.hpp"
+#include "test_data.hpp"
 #include "config/config.hpp"
 #include "io/trajectory_io.hpp"
 #include "runfolder/run_files.hpp"
@@ -116,12 +117,21 @@ TEST(CliRun, ConfigPrintsTheResolvedParameters) {
 
 namespace revisit {
 namespace {
-TEST(CliRun, ReportAndInspectRedrawFromTheRunFolder) {
+TEST(CliRun, EvalReportAndInspectRedrawFromTheRunFolder) {
     test::TempDir dir;
     const auto out = (dir / "run").string();
     const auto run = test::RunCli("run " + test::Quote(test::TinySimDataset().string()) +
                                   " --to 300 --quiet --set output.write_report=false --out " + test::Quote(out));
     ASSERT_EQ(run.exit_code, 0) << run.output;
+    // `eval` recomputes the run's own figures, byte for byte, from the ground truth the run cached.
+    const auto read = [&out](const char* name) { return test::ReadFile(fs::path(out) / name); };
+    const std::string metrics = read("metrics.json"), ground_truth = read("ground_truth_closures.txt");
+    ASSERT_FALSE(metrics.empty());
+    ASSERT_NE(ground_truth.find("\nkey "), std::string::npos);
+    const auto eval = test::RunCli("eval " + test::Quote(out) + " --quiet");
+    ASSERT_EQ(eval.exit_code, 0) << eval.output;
+    EXPECT_EQ(read("ground_truth_closures.txt"), ground_truth);
+    EXPECT_EQ(read("metrics.json"), metrics);
     const auto report = test::RunCli("report " + test::Quote(out));
     EXPECT_EQ(report.exit_code, 0) << report.output;
     EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "index.html"));
