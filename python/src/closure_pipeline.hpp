@@ -33,6 +33,9 @@ class PyClosurePipeline {
     std::optional<OdometryStages> odometry_;
     revisit::Poses poses_;  ///< T_world_sensor of every scan added
     bool finished_ = false;
+    StageTimer add_scan_;  ///< the C++ calls to ClosurePipeline::AddScan, measured around them (the overhead's reference)
+  public:
+    const StageTimer& add_scan_timer() const { return add_scan_; }
 };
 
 /// The accepted records that may correct the trajectory.
