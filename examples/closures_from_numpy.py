@@ -17,7 +17,7 @@ for scan in revisit.open_dataset(dataset, config):
     points = np.ascontiguousarray(scan.points, dtype=np.float32)  # (N, 3) in the sensor frame
     for closure in pipeline.add_scan(points, T_world_sensor=scan.T_world_sensor, stamp=scan.stamp):
         print(f"scan {scan.index}: map {closure.query_map} closes on map {closure.ref_map} "
-              f"({closure.inliers} inliers, moved {np.linalg.norm(closure.T_query_ref[:3, 3]):.2f} m)")
+              f"({closure.inliers} inliers, origins {np.linalg.norm(closure.T_query_ref[:3, 3]):.1f} m apart)")
 
 closures = pipeline.finish()
 corrected = pipeline.corrected_poses()  # (N, 4, 4) T_world_sensor after the pose graph
