@@ -21,6 +21,7 @@ void AddConfigCommand(CLI::App& root, Action& action);
 void AddBenchCommand(CLI::App& root, Action& action);
 void AddMergeCommand(CLI::App& root, Action& action);
 void AddBatchCommand(CLI::App& root, Action& action);
+void AddExportCommand(CLI::App& root, Action& action);
 
 /// A progress line on stderr when it is a terminal, rewritten in place; silent otherwise.
 void ShowProgress(const std::string& text);

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     revisit::app::AddEvalCommand(root, action);
     revisit::app::AddReportCommands(root, action);
     revisit::app::AddConvertCommand(root, action);
+    revisit::app::AddExportCommand(root, action);
     revisit::app::AddConfigCommand(root, action);
     revisit::app::AddBenchCommand(root, action);
     revisit::app::AddMergeCommand(root, action);

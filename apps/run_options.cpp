@@ -2,8 +2,7 @@
 
 #include <filesystem>
 
-#include "core/error.hpp"
-#include "settings/auto_settings.hpp"
+#include "settings/resolve_config.hpp"
 
 namespace revisit::app {
 namespace fs = std::filesystem;
@@ -16,24 +15,10 @@ void AddConfigOptions(CLI::App& cmd, ConfigOptions& options) {
     cmd.add_option("--threads", options.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
 }
 
-PipelineConfig ResolveConfig(const ConfigOptions& options) {
-    std::vector<std::string> files;
-    for (const auto& name : options.configs) {
-        const bool is_path = name.find('/') != std::string::npos || fs::path(name).extension() == ".yaml" || fs::exists(name);
-        const fs::path file = is_path ? fs::path(name) : fs::path(REVISIT_CONFIG_DIR) / (name + ".yaml");
-        if (!fs::exists(file)) throw ConfigError("--config " + name + ": no such file or preset (" + file.string() + ")");
-        files.push_back(file.string());
-    }
-    return LoadConfig(files, options.overrides);
-}
+PipelineConfig ResolveConfig(const ConfigOptions& options) { return revisit::ResolveConfig(options.configs, options.overrides); }
 
 PipelineConfig ResolveConfigFor(const ConfigOptions& options, const fs::path& dataset, std::ostream& log) {
-    PipelineConfig config = ResolveConfig(options);
-    const AutoSettings settings = ConfigureFromData(config, dataset);
-    PrintAutoSettings(log, settings, dataset);
-    config.derived = settings.Describe();
-    for (const auto& warning : settings.warnings) config.derived.push_back("warning: " + warning);
-    return config;
+    return revisit::ResolveConfigFor(options.configs, options.overrides, dataset, log);
 }
 
 std::unique_ptr<tbb::global_control> LimitThreads(int threads) {

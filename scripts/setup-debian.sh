@@ -15,6 +15,8 @@ packages=(
   # packages whose types the bags carry)
   libzstd-dev liblz4-dev libsqlite3-dev librosbag-storage-dev librcpputils-dev librcutils-dev
   libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev
+  # the Python module (python/)
+  pybind11-dev python3-dev python3-numpy
 )
 case "${1:-}" in
   "") ;;
@@ -27,6 +29,8 @@ case "${1:-}" in
       slurm-wlm munge
       # the report's page tests render the pages in headless Chromium
       chromium
+      # the Python module's tests
+      python3-pytest
     )
     ;;
   *)

@@ -40,8 +40,8 @@ LocalMap LocalMapper::CloseCurrent() {
     return map;
 }
 
-std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
-                                             const Eigen::Isometry3d& T_world_sensor) {
+std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const Eigen::Vector3f* points_in_sensor,
+                                             std::size_t count, const Eigen::Isometry3d& T_world_sensor) {
     const Eigen::Vector3d position = T_world_sensor.translation();
     if (last_position_) travel_ += (position - *last_position_).norm();
     last_position_ = position;
@@ -75,9 +75,9 @@ std::optional<LocalMap> LocalMapper::AddScan(std::size_t scan_index, const std::
 
     const Eigen::Isometry3d T_map_scan = current_.T_world_map.inverse() * T_world_sensor;
     const Eigen::Isometry3f T_map_scan_f = T_map_scan.cast<float>();
-    const std::size_t n = points_in_sensor.size();
+    const std::size_t n = count;
     if (n < 16384) {  // small scans: the plain loop, no tasks
-        for (const auto& p : points_in_sensor) Insert(T_map_scan_f * p);
+        for (std::size_t i = 0; i < n; ++i) Insert(T_map_scan_f * points_in_sensor[i]);
     } else {
         // In parallel (issue 19): the transform, and whether the point's voxel is already full. A full
         // voxel never changes again, so skipping its points is exact; the serial insertion, in input

@@ -45,6 +45,11 @@ class LocalMapper {
     /// Adds one scan (points in the sensor frame). Returns the map this scan closed, if any
     /// (the scan itself then starts the next map).
     std::optional<LocalMap> AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
+                                    const Eigen::Isometry3d& T_world_sensor) {
+        return AddScan(scan_index, points_in_sensor.data(), points_in_sensor.size(), T_world_sensor);
+    }
+    /// The same over `count` points the caller owns (a numpy array's buffer, read in place).
+    std::optional<LocalMap> AddScan(std::size_t scan_index, const Eigen::Vector3f* points_in_sensor, std::size_t count,
                                     const Eigen::Isometry3d& T_world_sensor);
     /// Closes the current map at the end of the sequence (nullopt when it holds no scan).
     std::optional<LocalMap> Finish();

@@ -78,10 +78,10 @@ void ClosurePipeline::Time(const std::string& stage, double ms) {
     timer.count++;
 }
 
-PipelineUpdate ClosurePipeline::AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
+PipelineUpdate ClosurePipeline::AddScan(std::size_t scan_index, const Eigen::Vector3f* points_in_sensor, std::size_t count,
                                         const Eigen::Isometry3d& T_world_sensor) {
     const auto start = std::chrono::steady_clock::now();
-    auto closed = mapper_.AddScan(scan_index, points_in_sensor, T_world_sensor);
+    auto closed = mapper_.AddScan(scan_index, points_in_sensor, count, T_world_sensor);
     Time("local_map", MillisecondsSince(start));
     return closed ? ProcessMap(*closed) : PipelineUpdate{};
 }

@@ -32,6 +32,12 @@ class ClosurePipeline {
 
     /// One scan: points in the sensor frame (deskewed if the odometry deskews) and its pose.
     PipelineUpdate AddScan(std::size_t scan_index, const std::vector<Eigen::Vector3f>& points_in_sensor,
+                           const Eigen::Isometry3d& T_world_sensor) {
+        return AddScan(scan_index, points_in_sensor.data(), points_in_sensor.size(), T_world_sensor);
+    }
+    /// The same over `count` points the caller owns, read in place during the call (the Python module
+    /// passes a numpy array's buffer this way).
+    PipelineUpdate AddScan(std::size_t scan_index, const Eigen::Vector3f* points_in_sensor, std::size_t count,
                            const Eigen::Isometry3d& T_world_sensor);
     /// Closes the last map and runs the final batch optimization (after the drift calibration, then the
     /// proximity pass).

@@ -15,6 +15,7 @@
 #include "core/allocator.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "exports/run_exports.hpp"
 #include "io/output_folder.hpp"
 #include "io/prefetch_reader.hpp"
 #include "io/reader.hpp"
@@ -308,6 +309,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
     state.peak_rss_kb = PeakRssKb();
     WriteRunState(run, state);
+    WriteRunExports(run, state, config);
     if (!state.odometry_fallbacks.empty()) {
         log << "warning: the odometry fell back to the motion prediction on " << state.odometry_fallbacks.size() << " of "
             << state.odometry.size() << " scans" << (state.odometry_fallbacks.size() > kShownFallbacks ? " (the first shown above)" : "")

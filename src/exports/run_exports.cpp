@@ -1,0 +1,45 @@
+#include "exports/run_exports.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "exports/closures_json.hpp"
+#include "exports/pose_graph_export.hpp"
+#include "runfolder/run_files.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+
+void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
+    const ExportGraph graph = RunPoseGraph(state, config, false);
+    WriteFileAtomically(run.root() / "pose_graph.g2o", [&](std::ostream& out) { WriteG2o(out, graph); });
+    WriteFileAtomically(run.root() / "closures.json", [&](std::ostream& out) { WriteClosuresJson(out, state, config); });
+}
+
+fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
+    if (options.format != "g2o" && options.format != "closures-json") {
+        throw ConfigError("--format " + options.format + ": expected g2o or closures-json");
+    }
+    if (options.per_scan && options.format != "g2o") throw ConfigError("--per-scan applies to --format g2o only");
+    const RunFolder run = RunFolder::Open(run_folder);
+    RunState state = ReadRunState(run);
+    const PipelineConfig config = LoadConfig({run.config().string()}, {});
+    // The registration's information is not in closures.csv: the run recorded it in closures.json.
+    const fs::path recorded = run.root() / "closures.json";
+    if (config.graph_noise.closure_information_from_registration) {
+        if (!fs::exists(recorded)) throw DatasetError(recorded, "missing: the closures' information matrices came from their registrations and only closures.json recorded them");
+        ReadClosureInformation(recorded, state);
+    }
+    fs::path out = options.out;
+    if (out.empty()) {
+        out = run.root() / (options.format == "closures-json" ? "closures.json" : options.per_scan ? "pose_graph_scans.g2o" : "pose_graph.g2o");
+    }
+    if (options.format == "closures-json") {
+        WriteFileAtomically(out, [&](std::ostream& stream) { WriteClosuresJson(stream, state, config); });
+    } else {
+        const ExportGraph graph = RunPoseGraph(state, config, options.per_scan);
+        WriteFileAtomically(out, [&](std::ostream& stream) { WriteG2o(stream, graph); });
+    }
+    return out;
+}
+
+}  // namespace revisit
