@@ -317,6 +317,11 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         log << "note: " << (ground_truth.active() ? options.gt_file.string() + ": " : std::string()) << unpaired.Describe()
             << (ground_truth.by_time() ? "; the reference: " + ground_truth.DescribeSpan() : std::string()) << '\n';
     }
+    if (read_to_end && options.to && *options.to >= reader->Stats().scans) {
+        // As --from past the end is an error: the range asked for is not silently shortened.
+        log << "note: --to " << *options.to << " is past the end: the dataset has " << reader->Stats().scans
+            << " scans; the run covers scans " << options.from << " .. " << reader->Stats().scans - 1 << '\n';
+    }
     const std::string drops = DescribeDrops(reader->Stats());
     if (!drops.empty()) log << "note: " << drops << '\n';
     if (!state.truncated.empty()) {

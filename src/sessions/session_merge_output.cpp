@@ -178,8 +178,9 @@ void PrintMergeSummary(std::ostream& out, const MergeResult& result, const fs::p
 }
 
 MergeResult MergeRunFolders(const std::vector<fs::path>& runs, const fs::path& out, bool force,
-                            const std::vector<std::string>& overrides, std::ostream& log, std::ostream& out_stream) {
-    auto sessions = LoadSessionRuns(runs);
+                            const std::vector<std::string>& overrides, std::ostream& log, std::ostream& out_stream,
+                            bool allow_incomplete) {
+    auto sessions = LoadSessionRuns(runs, allow_incomplete, &log);
     const PipelineConfig config = MergeConfig(sessions.front(), overrides);
     MergeResult result = MergeSessions(std::move(sessions), config, log);
     WriteMerge(out, force, result, config);

@@ -152,8 +152,11 @@ TEST(RunFolderSafety, RunForceRemovesTheResultsOfTheEarlierRun) {
     std::ofstream(run / "notes.txt") << "mine";
     // Into the same folder: three PCD scans without a reference (no metrics, one map).
     const fs::path pcd = WritePcdFolder(dir / "scans");
-    const auto result = RunCli("run " + Quote(pcd.string()) + " --quiet --force --out " + Quote(run.string()));
+    const auto result = RunCli("run " + Quote(pcd.string()) + " --to 10 --quiet --force --out " + Quote(run.string()));
     ASSERT_EQ(result.exit_code, 0) << result.output;
+    // --to past the end is said, not silently clamped.
+    EXPECT_NE(result.output.find("--to 10 is past the end: the dataset has 3 scans; the run covers scans 0 .. 2"), std::string::npos)
+        << result.output;
     EXPECT_FALSE(fs::exists(run / "metrics.json"));  // the earlier run's metrics are not this run's
     for (const auto& entry : fs::directory_iterator(run)) {
         const std::string name = entry.path().filename().string();
