@@ -13,6 +13,7 @@
 #include "io/trajectory_io.hpp"
 #include "optimization/trajectory_correction.hpp"
 #include "runfolder/csv.hpp"
+#include "runfolder/json_file.hpp"
 #include "runfolder/run_manifest.hpp"
 
 namespace revisit {
@@ -50,7 +51,7 @@ std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<st
 }
 
 void WriteJson(const fs::path& file, const json& value) {
-    WriteFileAtomically(file, [&value](std::ostream& out) { out << std::setw(2) << value << '\n'; });
+    WriteJsonFile(file, value);
 }
 
 json ReadJson(const fs::path& file) {

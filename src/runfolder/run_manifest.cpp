@@ -95,6 +95,8 @@ void CheckRunManifest(const RunFolder& run, const json& info) {
         std::error_code ec;
         if (!fs::exists(fs::symlink_status(file, ec)))
             throw DatasetError(file, "is missing; run.json lists it as a result of the run (removed after the run?)");
+        if (fs::is_directory(fs::symlink_status(file, ec)))
+            throw DatasetError(file, "is a folder, expected a file; run.json lists it as a result of the run");
         if (!fs::is_regular_file(fs::symlink_status(file, ec)))
             throw DatasetError(file, "is not a regular file; run.json lists it as a result of the run");
         const ManifestEntry actual = DescribeFile(file, name);

@@ -10,6 +10,7 @@
 #include "io/cloud_files.hpp"
 #include "io/output_folder.hpp"
 #include "io/trajectory_io.hpp"
+#include "runfolder/json_file.hpp"
 #include "optimization/global_map.hpp"
 #include "runfolder/csv.hpp"
 #include "runfolder/folder_map_store.hpp"
@@ -151,7 +152,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
         {"joint_map", "map_joint.ply"},
         {"joint_map_points", joint_map.size()},
         {"graph_iterations", result.graph.iterations}};
-    WriteFileAtomically(out / "sessions.json", [&summary](std::ostream& o) { o << std::setw(2) << summary << '\n'; });
+    WriteJsonFile(out / "sessions.json", summary);
 }
 
 void PrintMergeSummary(std::ostream& out, const MergeResult& result, const fs::path& folder) {

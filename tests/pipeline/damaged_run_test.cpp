@@ -237,6 +237,25 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         EXPECT_EQ(flipped.exit_code, 1) << flipped.output;
         EXPECT_NE(flipped.output.find(map.string() + ": CRC-32"), std::string::npos) << flipped.output;
     }
+    {  // AFolderWhereAFileShouldBeIsNamed
+        test::TempDir dir;
+        const fs::path run = CopyOfGoodRun(dir, true);
+        for (const char* name : {"database.bin", "run.json"}) {
+            fs::path file = run / name;
+            const fs::path saved = dir / (std::string(name) + ".saved");
+            fs::rename(file, saved);
+            fs::create_directories(file);
+            for (const std::string command : {"inspect " + Quote(run.string()) + " --map 0", "eval " + Quote(run.string())}) {
+                const auto result = RunCli(command);
+                EXPECT_EQ(result.exit_code, 1) << command << ": " << result.output;
+                EXPECT_NE(result.output.find(file.string() + ": is a folder, expected a file"), std::string::npos)
+                    << command << ": " << result.output;
+                EXPECT_EQ(result.output.find("basic_filebuf"), std::string::npos) << result.output;
+            }
+            fs::remove(file);
+            fs::rename(saved, file);
+        }
+    }
     {  // InspectOfAMapThatDoesNotExistIsANamedError
         const auto result = RunCli("inspect " + Quote(GoodRun().string()) + " --maps 99 0");
         EXPECT_EQ(result.exit_code, 1);

@@ -11,6 +11,8 @@
 
 #include <csignal>
 
+#include <nlohmann/json.hpp>
+
 #include "cli.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/report_builder.hpp"
@@ -171,6 +173,18 @@ TEST(RunFolderSafety, RunForceRemovesTheResultsOfTheEarlierRun) {
     const std::string index = test::ReadFile(run / "report" / "index.html");
     EXPECT_NE(index.find("No evaluation in this run"), std::string::npos);
     EXPECT_FALSE(fs::exists(run / "report" / "ape_over_time.svg"));
+}
+
+TEST(RunFolderSafety, ADatasetPathThatIsNotUtf8Runs) {
+    test::TempDir dir;
+    const fs::path dataset = WritePcdFolder(dir / "caf\xe9 scans");  // Latin-1: not UTF-8
+    const fs::path run = dir / "run";
+    const auto result = RunCli("run " + Quote(dataset.string()) + " --quiet --out " + Quote(run.string()));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const auto options = nlohmann::json::parse(test::ReadFile(run / "run_options.json"));
+    EXPECT_TRUE(options.contains("dataset_bytes")) << options.dump(2);
+    const auto report = RunCli("report " + Quote(run.string()) + " --quiet");
+    EXPECT_EQ(report.exit_code, 0) << report.output;
 }
 
 }  // namespace
