@@ -1,5 +1,7 @@
 #include "runfolder/staged_folder.hpp"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +33,10 @@ StagedFolder::StagedFolder(fs::path target, std::vector<std::string> own_extensi
     if (target_.has_parent_path()) fs::create_directories(target_.parent_path(), ec);
     if (ec) throw DatasetError(target_.parent_path(), "cannot create folder: " + ec.message());
     staged_ = MakeFolderBeside(target_, "staged");
+    // mkdtemp makes the folder private (0700); the report is read as any folder the user makes is.
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    fs::permissions(staged_, static_cast<fs::perms>(0777 & ~mask), ec);
 }
 
 StagedFolder::~StagedFolder() {

@@ -259,7 +259,7 @@ AutoSettings ApplyAutoSettings(PipelineConfig& config, const DataProfile& profil
     if (profile.far_range > 0.0) {
         result.warnings.push_back("scan " + std::to_string(profile.far_scan) + " has a point " + Number(profile.far_range, 0) +
                                   " m away (no sensor measures beyond " + Number(kMaxPlausibleRange, 0) +
-                                  " m: damaged points or another unit?); the settings follow the bulk of the points");
+                                  " m): damaged points or another unit?");
     }
     for (auto& choice : result.choices) {
         if (config.explicit_keys.count(choice.key) == 0) {

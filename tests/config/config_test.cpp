@@ -98,7 +98,8 @@ TEST(Configs, EveryKeyRoundTripsThroughTheWrittenConfigIncludingQuotesAndBacksla
     const std::string nasty = "a\"b\\c 'd' #e: f\tg";
     PipelineConfig config;
     std::size_t texts = 0;
-    for (const auto& entry : MakeConfigSchema(config).entries()) {
+    const ConfigSchema fields = MakeConfigSchema(config);
+    for (const auto& entry : fields.entries()) {
         if (auto* const* text = std::get_if<std::string*>(&entry.field)) {
             **text = nasty + entry.key;
             ++texts;

@@ -149,7 +149,7 @@ TEST(AutoSettings, FarPointsKeepTheProfileSmallAndAreNamedWithTheirScan) {
         const DataProfile profile = profiler.Profile();
         EXPECT_EQ(profile.far_scan, 7u) << far;
         EXPECT_NEAR(profile.far_range / far, 1.0, 0.01) << far;
-        EXPECT_LT(profile.range_p50, 30.0);  // the settings follow the bulk of the points
+        EXPECT_LT(profile.range_p50, 30.0);  // the median is the scene's
         PipelineConfig config;
         const AutoSettings settings = ApplyAutoSettings(config, profile);
         bool named = false;
