@@ -34,6 +34,15 @@ std::string Printable(std::string_view text) {
     return out;
 }
 
+std::string PrintableField(std::string_view text) {
+    std::string out;
+    for (const char c : Printable(text)) {
+        if (c == '\n' || c == '\r' || c == '\t') out += Escaped(static_cast<unsigned char>(c));
+        else out.push_back(c);
+    }
+    return out;
+}
+
 PrintableStreambuf::~PrintableStreambuf() {
     if (after_c2_) target_->sputc(static_cast<char>(0xc2));
     target_->pubsync();

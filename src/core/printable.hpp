@@ -12,6 +12,10 @@ namespace revisit {
 /// `text` with every control character but '\n', '\t' and '\r' written as \xNN (C1 controls as \xc2\xNN).
 std::string Printable(std::string_view text);
 
+/// A value from the data printed inside a line (a label, a topic name): Printable, and line breaks
+/// and tabs escaped too, so it cannot start a fake line of output.
+std::string PrintableField(std::string_view text);
+
 /// A stream buffer that filters everything written through it as Printable does, into `target`.
 /// `revisit` installs it on std::cout and std::cerr for the whole run.
 class PrintableStreambuf : public std::streambuf {

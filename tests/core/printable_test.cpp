@@ -13,6 +13,7 @@ TEST(Printable, ControlCharactersAreEscapedAndTextKept) {
     const std::string label = "LIDAR\x1b[2J\x1b]0;pwned\x07\r\nrevisit: done\x7f\xc2\x9b" "31m caf\xc3\xa9";
     EXPECT_EQ(Printable(label), "LIDAR\\x1b[2J\\x1b]0;pwned\\x07\r\nrevisit: done\\x7f\\xc2\\x9b" "31m caf\xc3\xa9");
     EXPECT_EQ(Printable("plain text\twith a tab\n"), "plain text\twith a tab\n");
+    EXPECT_EQ(PrintableField("a\rfake line\n"), "a\\x0dfake line\\x0a");
     // The stream filter gives the same, whatever the pieces it is written in.
     std::ostringstream target;
     {

@@ -225,8 +225,9 @@ TEST(RawlogReader, DamageIsNamedAtTheObjectsOwnOffset) {
     const std::string two = test::ReadFile(dir / "two.rawlog");
     std::string bytes = test::ReadFile(dir / "three.rawlog");
     ASSERT_EQ(bytes.compare(0, two.size(), two), 0);  // object 2 starts where the first two end
-    // A flipped bit in object 2's class name.
-    bytes[two.size() + 4] ^= 0x20;
+    // A flipped bit in object 2's class name ("mrpt::obs::CObs..." -> "...COBs...": no such class).
+    ASSERT_EQ(bytes.substr(two.size() + 1, 15), "mrpt::obs::CObs");
+    bytes[two.size() + 14] ^= 0x20;
     std::ofstream(dir / "flipped.rawlog", std::ios::binary) << bytes;
     const std::string error = ReadError(dir / "flipped.rawlog");
     EXPECT_NE(error.find("reading stopped in object 2 (starts at byte " + std::to_string(two.size()) + " of " +

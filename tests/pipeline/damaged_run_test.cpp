@@ -218,7 +218,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         const bool has_rows = std::count(original.begin(), original.end(), '\n') > 1;
         std::ofstream(closures, std::ios::binary | std::ios::trunc)
             << original.substr(0, has_rows ? original.find('\n') + 1 : 50);
-        for (const std::string command : {"report", "eval", "inspect"}) {
+        for (const std::string& command : {"report", "eval", "inspect"}) {
             const auto result = RunCli(command + " " + Quote(run.string()) + (command == "inspect" ? " --map 0" : ""));
             EXPECT_EQ(result.exit_code, 1) << command << ": " << result.output;
             EXPECT_NE(result.output.find(closures.string() + ": has "), std::string::npos) << command << ": " << result.output;
@@ -245,7 +245,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
             const fs::path saved = dir / (std::string(name) + ".saved");
             fs::rename(file, saved);
             fs::create_directories(file);
-            for (const std::string command : {"inspect " + Quote(run.string()) + " --map 0", "eval " + Quote(run.string())}) {
+            for (const std::string& command : {"inspect " + Quote(run.string()) + " --map 0", "eval " + Quote(run.string())}) {
                 const auto result = RunCli(command);
                 EXPECT_EQ(result.exit_code, 1) << command << ": " << result.output;
                 EXPECT_NE(result.output.find(file.string() + ": is a folder, expected a file"), std::string::npos)
