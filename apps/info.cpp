@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "core/printable.hpp"
 #include "io/dataset_summary.hpp"
 #include "settings/auto_settings.hpp"
 
@@ -22,7 +23,7 @@ void PrintTopics(std::ostream& out, const std::vector<TopicSummary>& topics) {
     for (const auto& t : topics) {
         char rate[32];
         std::snprintf(rate, sizeof rate, "%.2f Hz", t.rate_hz);
-        out << "  " << t.name << "  " << t.type << "  " << t.messages << " messages  " << rate << "  -> " << t.role << '\n';
+        out << "  " << PrintableField(t.name) << "  " << PrintableField(t.type) << "  " << t.messages << " messages  " << rate << "  -> " << t.role << '\n';
     }
 }
 

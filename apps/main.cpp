@@ -3,10 +3,12 @@
 
 #include "commands.hpp"
 #include "core/allocator.hpp"
+#include "core/printable.hpp"
 #include "sim/sim_reader.hpp"
 
 int main(int argc, char** argv) {
     revisit::TuneAllocator();
+    revisit::FilterTerminalOutput();  // labels and names from the data never drive the terminal
     revisit::RegisterSimulatorDatasets();  // `sim:PRESET` wherever a dataset is named
     CLI::App root{
         "revisit finds loop closures in LiDAR and 2D-laser sequences and corrects the drifted trajectory.\n"

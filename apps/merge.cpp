@@ -13,12 +13,13 @@ struct MergeOptions {
     std::vector<std::string> overrides;
     int threads = 0;
     bool force = false;
+    bool allow_incomplete = false;
 };
 
 int RunMerge(const MergeOptions& o) {
     const auto threads = LimitThreads(o.threads);
     std::vector<std::filesystem::path> runs(o.runs.begin(), o.runs.end());
-    const auto result = MergeRunFolders(runs, o.out, o.force, o.overrides, std::cerr, std::cout);
+    const auto result = MergeRunFolders(runs, o.out, o.force, o.overrides, std::cerr, std::cout, o.allow_incomplete);
     for (const char connected : result.graph.connected) {
         if (!connected) return 3;  // written, but not every session is in the common frame
     }
@@ -44,6 +45,8 @@ void AddMergeCommand(CLI::App& root, Action& action) {
     cmd->add_option("--set", o->overrides, "override one parameter of the anchor run's config; repeatable");
     cmd->add_option("--threads", o->threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
     cmd->add_flag("--force", o->force, "write into an existing non-empty folder");
+    cmd->add_flag("--allow-incomplete", o->allow_incomplete,
+                  "merge an interrupted run (run.json: complete = false) as it is, with a warning; refused otherwise");
     cmd->callback([o, &action] { action = [o] { return RunMerge(*o); }; });
 }
 

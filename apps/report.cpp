@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "core/owned_files.hpp"
+#include "pipeline/interrupt.hpp"
 #include "pipeline/report_builder.hpp"
 #include "report/report_writer.hpp"
 #include "run_options.hpp"
@@ -23,7 +24,13 @@ struct ReportOptions {
 int RunReport(const ReportOptions& o) {
     const auto threads = LimitThreads(o.threads);
     const RunFolder run = RunFolder::Open(o.run);
-    WriteRunReport(run, std::cerr, {o.quiet, o.overrides});
+    InstallInterruptHandler();
+    try {
+        WriteRunReport(run, std::cerr, {o.quiet, o.overrides});
+    } catch (const Interrupted&) {
+        std::cerr << "revisit: interrupted; the previous report in " << run.report_dir().string() << " is kept as it was\n";
+        return 130;
+    }
     std::cout << run.report_index().string() << '\n';
     return 0;
 }

@@ -22,6 +22,7 @@ struct RunCommandOptions {
     long long to = 0;
     bool has_to = false;
     std::vector<std::string> against;  ///< earlier runs: merge with them after this run
+    bool allow_incomplete = false;     ///< an interrupted earlier run is merged, with a warning
 };
 
 int RunRun(RunCommandOptions& o) {
@@ -29,7 +30,7 @@ int RunRun(RunCommandOptions& o) {
     if (!o.against.empty()) {
         // Check the earlier runs before spending time on this one; without --config, take the first one's
         // settings, so that this run's descriptors are comparable with theirs.
-        const auto earlier = LoadSessionRuns({o.against.begin(), o.against.end()});
+        const auto earlier = LoadSessionRuns({o.against.begin(), o.against.end()}, o.allow_incomplete, &std::cerr);
         for (const auto& session : earlier) sessions.push_back(session.folder);
         if (o.config.configs.empty()) o.config.configs.push_back(RunFolder(earlier.front().folder).config().string());
     }
@@ -54,7 +55,8 @@ int RunRun(RunCommandOptions& o) {
     if (default_out) RunFolder::UpdateLatestLink(o.run.out);
     if (!sessions.empty() && state.complete && !InterruptRequested()) {
         sessions.push_back(o.run.out);
-        const auto merged = MergeRunFolders(sessions, o.run.out / "merge", true, o.config.overrides, std::cerr, std::cout);
+        const auto merged = MergeRunFolders(sessions, o.run.out / "merge", true, o.config.overrides, std::cerr, std::cout,
+                                            o.allow_incomplete);
         if (std::count(merged.graph.connected.begin(), merged.graph.connected.end(), 0) > 0) return 3;  // as revisit merge
     }
     return state.complete && !InterruptRequested() ? 0 : 130;
@@ -88,6 +90,9 @@ void AddRunCommand(CLI::App& root, Action& action) {
     cmd->add_option("--against", o->against,
                     "an earlier run folder (repeatable): also find closures with its session and write the joint "
                     "result to OUT/merge (as revisit merge); without --config, its config.yaml is used");
+    cmd->add_flag("--allow-incomplete", o->allow_incomplete,
+                  "with --against: merge an interrupted earlier run (run.json: complete = false) as it is, with a "
+                  "warning; refused otherwise");
     cmd->add_flag("--force", o->run.force, "write into an existing non-empty run folder");
     cmd->add_flag("--quiet", o->run.quiet, "no progress output");
     cmd->add_flag("--allow-truncated", o->run.allow_truncated,

@@ -10,7 +10,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${REVISIT_FUZZ_BUILD:-$root/build-fuzz}"
-targets=(fuzz_scans fuzz_trajectories fuzz_rawlog fuzz_mcap fuzz_db3 fuzz_ros1 fuzz_carmen fuzz_database fuzz_config fuzz_run_folder)
+targets=(fuzz_scans fuzz_trajectories fuzz_rawlog fuzz_mcap fuzz_db3 fuzz_ros1 fuzz_carmen fuzz_database fuzz_config fuzz_run_folder fuzz_profile)
 
 smoke=0
 if [[ "${1:-}" == "--smoke" ]]; then
@@ -43,7 +43,7 @@ status=0
 keep_going=()
 if [[ "${FUZZ_KEEP_GOING:-0}" == 1 ]]; then keep_going=(-fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1); fi
 for target in "${targets[@]}"; do
-  mkdir -p "$corpus/$target"
+  mkdir -p "$corpus/$target" "$build/seeds/$target"
   log="$build/$target.log"
   echo "== $target: ${seconds} s"
   # UBSan and ASan stop at the first report; libFuzzer saves the input in crashes/.

@@ -82,7 +82,8 @@ std::string RecordToJson(const BenchRecord& r) {
                                    {"samples", m.samples},
                                    {"note", m.note}});
     }
-    return json.dump(2) + "\n";
+    // A host or path name that is not UTF-8 is written as U+FFFD instead of failing.
+    return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 BenchRecord RecordFromJson(const std::string& text, const std::string& source) {

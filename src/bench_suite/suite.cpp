@@ -1,6 +1,10 @@
 #include "bench_suite/suite.hpp"
 
+#include <stdlib.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <random>
 
@@ -26,11 +30,14 @@ const CaseGroup kGroups[] = {
     {"consistency", ConsistencyCases}, {"proximity", ProximityCases}, {"report", ReportCases},
 };
 
+/// A new folder of its own in the temporary folder, created exclusively (mkdtemp): a folder or link
+/// planted under a guessed name is never written into, and removing it removes only the suite's files.
 std::filesystem::path FreshScratch() {
-    std::random_device device;
-    const auto dir = std::filesystem::temp_directory_path() / ("revisit-bench-" + std::to_string(device()));
-    std::filesystem::create_directories(dir);
-    return dir;
+    std::string pattern = (std::filesystem::temp_directory_path() / "revisit-bench-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+        throw DatasetError(pattern, std::string("cannot create a scratch folder: ") + std::strerror(errno));
+    }
+    return pattern;
 }
 }  // namespace
 

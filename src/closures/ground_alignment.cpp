@@ -5,31 +5,68 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace revisit {
 namespace {
 
+/// Cells of a dense grid over the bounding box at most, beyond which the cells are sorted instead:
+/// a few far points (3e4 m, 1e5 m) would otherwise make a grid of gigabytes. The memory is then
+/// bounded by the number of points whatever their coordinates; both ways give the same candidates in
+/// the same (row-major) order.
+constexpr double kMaxDenseCells = 4.0 * 1024 * 1024;
+
 std::vector<Eigen::Vector3d> LowestPerCell(const std::vector<Eigen::Vector3f>& points, double cell_size) {
-    if (points.empty()) return {};
-    // A dense grid over the bounding box: faster than hashing for the map sizes we see (~300 m at 1 m).
-    Eigen::Vector2f lo = points.front().head<2>(), hi = lo;
-    for (const auto& p : points) {
-        lo = lo.cwiseMin(p.head<2>());
-        hi = hi.cwiseMax(p.head<2>());
-    }
-    const float inv = float(1.0 / cell_size);
-    const int cols = int((hi.x() - lo.x()) * inv) + 1, rows = int((hi.y() - lo.y()) * inv) + 1;
-    constexpr std::int32_t kEmpty = -1;
-    std::vector<std::int32_t> lowest(std::size_t(rows) * std::size_t(cols), kEmpty);
+    std::vector<std::size_t> finite;  // a point with an infinite or NaN coordinate has no cell
+    finite.reserve(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        const auto& p = points[i];
-        const std::size_t cell = std::size_t(int((p.y() - lo.y()) * inv)) * cols + std::size_t(int((p.x() - lo.x()) * inv));
-        if (lowest[cell] == kEmpty || p.z() < points[std::size_t(lowest[cell])].z()) lowest[cell] = std::int32_t(i);
+        if (points[i].allFinite()) finite.push_back(i);
+    }
+    if (finite.empty()) return {};
+    Eigen::Vector2f lo = points[finite.front()].head<2>(), hi = lo;
+    for (const auto i : finite) {
+        lo = lo.cwiseMin(points[i].head<2>());
+        hi = hi.cwiseMax(points[i].head<2>());
+    }
+    // Cell coordinates in float as the grid always had them (same cells, same candidates); held in
+    // double, where any float value, even an overflow to infinity, compares and multiplies safely.
+    const float inv = float(1.0 / cell_size);
+    const double cols = std::floor(double((hi.x() - lo.x()) * inv)) + 1.0, rows = std::floor(double((hi.y() - lo.y()) * inv)) + 1.0;
+    const auto cell_of = [&](std::size_t i) {
+        return std::pair<double, double>(std::floor(double((points[i].y() - lo.y()) * inv)),
+                                         std::floor(double((points[i].x() - lo.x()) * inv)));
+    };
+    constexpr std::int32_t kEmpty = -1;
+    std::vector<std::int32_t> lowest;  // per occupied cell in row-major order: the index of its lowest point
+    if (rows * cols <= std::max(kMaxDenseCells, 4.0 * static_cast<double>(finite.size()))) {
+        const auto num_cols = static_cast<std::size_t>(cols);
+        std::vector<std::int32_t> grid(static_cast<std::size_t>(rows) * num_cols, kEmpty);
+        for (const auto i : finite) {
+            const auto [row, col] = cell_of(i);
+            auto& cell = grid[static_cast<std::size_t>(row) * num_cols + static_cast<std::size_t>(col)];
+            if (cell == kEmpty || points[i].z() < points[std::size_t(cell)].z()) cell = std::int32_t(i);
+        }
+        for (const auto index : grid) {
+            if (index != kEmpty) lowest.push_back(index);
+        }
+    } else {
+        std::vector<std::pair<std::pair<double, double>, std::int32_t>> cells;
+        cells.reserve(finite.size());
+        for (const auto i : finite) cells.emplace_back(cell_of(i), std::int32_t(i));
+        // Sorted by cell, then by index: the first point of a cell wins ties, as in the dense grid.
+        std::sort(cells.begin(), cells.end());
+        for (std::size_t k = 0; k < cells.size(); ++k) {
+            if (k == 0 || cells[k].first != cells[k - 1].first) {
+                lowest.push_back(cells[k].second);
+            } else if (points[std::size_t(cells[k].second)].z() < points[std::size_t(lowest.back())].z()) {
+                lowest.back() = cells[k].second;
+            }
+        }
     }
     std::vector<Eigen::Vector3d> result;
-    for (const auto index : lowest) {
-        if (index != kEmpty) result.push_back(points[std::size_t(index)].cast<double>());
-    }
+    result.reserve(lowest.size());
+    for (const auto index : lowest) result.push_back(points[std::size_t(index)].cast<double>());
     return result;
 }
 

@@ -196,6 +196,16 @@ void ConfigSchema::ApplyOverride(const std::string& assignment) {
     SetValue(entries_[it->second], value, "--set");
 }
 
+namespace {
+/// A text value as YAML (double-quoted, escaped by yaml-cpp's emitter): quotes, backslashes, '#',
+/// control characters read back as written.
+std::string QuotedText(const std::string& text) {
+    YAML::Emitter out;
+    out << YAML::DoubleQuoted << text;
+    return out.c_str();
+}
+}  // namespace
+
 std::string ConfigSchema::Dump() const {
     std::ostringstream out;
     std::string section;
@@ -213,7 +223,7 @@ std::string ConfigSchema::Dump() const {
                 else if constexpr (std::is_same_v<F, int*> || std::is_same_v<F, std::uint32_t*> ||
                                    std::is_same_v<F, std::size_t*>) return std::to_string(*field);
                 else if constexpr (std::is_same_v<F, bool*>) return *field ? "true" : "false";
-                else if constexpr (std::is_same_v<F, std::string*>) return "\"" + *field + "\"";
+                else if constexpr (std::is_same_v<F, std::string*>) return QuotedText(*field);
                 else return field.get();
             },
             entry.field);

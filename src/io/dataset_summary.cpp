@@ -1,5 +1,7 @@
 #include "io/dataset_summary.hpp"
 
+#include "core/printable.hpp"
+
 #include <algorithm>
 #include <iomanip>
 #include <limits>
@@ -64,7 +66,7 @@ void PrintSummary(std::ostream& out, const DatasetSummary& s) {
     out << "dataset:          " << s.info.path.string() << '\n';
     out << "format:           " << s.info.format << '\n';
     out << "sensor labels:    ";
-    for (const auto& label : s.sensor_labels) out << (label.empty() ? "(none)" : label) << ' ';
+    for (const auto& label : s.sensor_labels) out << (label.empty() ? "(none)" : PrintableField(label)) << ' ';
     out << '\n';
     out << "scans:            " << s.num_scans << '\n';
     out << "points per scan:  min " << s.points_min << ", median " << s.points_median << ", max " << s.points_max << '\n';

@@ -72,6 +72,7 @@ class RawlogReader final : public Reader {
             const std::uint64_t left = stream_.MaxBytesLeft();
             const AllocationBudget budget(static_cast<std::size_t>(
                 std::min<std::uint64_t>(2 * left + kAllocationSlack, std::numeric_limits<std::size_t>::max() / 2)));
+            object_start_ = stream_.getPosition();
             object = archive_.ReadObject();
         } catch (const DatasetError& e) {
             Stop(stream_.error().empty() ? e.what() : stream_.error());  // gzip, CRC or read error
@@ -80,7 +81,6 @@ class RawlogReader final : public Reader {
         } catch (const std::exception& e) {
             Stop(stream_.error().empty() ? "corrupt object: " + MrptMessage(e.what()) : stream_.error());
         }
-        ++entry_;
         if (const auto actions = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(object)) {
             for (const auto& action : *actions) HandleAction(*action);
         } else if (const auto frame = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(object)) {
@@ -90,16 +90,23 @@ class RawlogReader final : public Reader {
         } else if (object) {
             stats_.skipped_classes[object->GetRuntimeClass()->className]++;
         }
+        ++entry_;
         return true;
     }
 
+    /// Where object entry_ starts: its own byte offset (in the decompressed data for gzip), not the
+    /// read buffer's position.
+    std::string ObjectStart() const {
+        return "object " + std::to_string(entry_) + " (starts at " + (stream_.is_gzip() ? "decompressed byte " : "byte ") +
+               std::to_string(object_start_) + " of " + std::to_string(stream_.getTotalBytesCount()) +
+               (stream_.is_gzip() ? " compressed" : "") + ")";
+    }
+
     [[noreturn]] void Stop(const std::string& problem) const {
-        const std::string where = stream_.is_gzip() ? "decompressed byte " + std::to_string(stream_.getPosition()) + ", "
-                                                    : std::string();
-        throw DatasetError(file_, "damaged rawlog: " + problem + "; reading stopped in object " + std::to_string(entry_) +
-                                      " (" + where + "file byte " + std::to_string(stream_.file_position()) + " of " +
-                                      std::to_string(stream_.getTotalBytesCount()) + ") after " +
-                                      std::to_string(stats_.scans + pending_.size()) + " scans");
+        const std::string read_up_to =
+            stream_.is_gzip() ? "; the damage is before compressed byte " + std::to_string(stream_.file_position()) : std::string();
+        throw DatasetError(file_, "damaged rawlog: " + problem + "; reading stopped in " + ObjectStart() + read_up_to +
+                                      " after " + std::to_string(stats_.scans + pending_.size()) + " scans");
     }
 
     /// MRPT nests exceptions, each with a banner and a backtrace: the innermost message says what went
@@ -152,6 +159,17 @@ class RawlogReader final : public Reader {
             stats_.skipped_sensors[obs->sensorLabel]++;
             return;
         }
+        // Every later stage pairs scans by time (and the run folder's TUM files require it): a step
+        // backwards, e.g. two recordings concatenated, is named here, where it is.
+        if (last_time_ && scan->timestamp < *last_time_) {
+            std::ostringstream problem;
+            problem.precision(17);
+            problem << "time goes backwards in " << ObjectStart() << ": scan " << stats_.scans + pending_.size() << " at "
+                    << scan->timestamp << " s after " << *last_time_ << " s (two recordings concatenated?); "
+                    << "--allow-truncated keeps the scans before it";
+            throw DatasetError(file_, problem.str());
+        }
+        last_time_ = scan->timestamp;
         scan->T_odom_sensor = T_odom_;
         scan->T_world_sensor = T_reference_;
         T_reference_.reset();  // a ground-truth pose belongs to the scan right after it
@@ -166,7 +184,9 @@ class RawlogReader final : public Reader {
     RawlogInputStream stream_;
     mrpt::serialization::CArchiveStreamBase<RawlogInputStream> archive_{stream_};
     bool done_ = false;
-    std::size_t entry_ = 0;
+    std::size_t entry_ = 0;            ///< objects read so far; Stop names the one being read
+    std::uint64_t object_start_ = 0;   ///< [bytes] where the object being read starts
+    std::optional<double> last_time_;  ///< [s] of the last scan kept
     std::optional<Eigen::Isometry3d> T_odom_;
     std::optional<Eigen::Isometry3d> T_reference_;
     std::deque<Scan> pending_;

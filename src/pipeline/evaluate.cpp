@@ -1,4 +1,6 @@
 #include "pipeline/evaluate.hpp"
+
+#include "runfolder/json_file.hpp"
 #include "core/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -183,7 +185,7 @@ json ReferenceJson(const RunEvaluation& e, std::size_t run_scans, std::size_t ru
 }
 
 void WriteJson(const fs::path& file, const json& content) {
-    WriteFileAtomically(file, [&content](std::ostream& out) { out << std::setw(2) << content << '\n'; });
+    WriteJsonFile(file, content);
 }
 
 /// `extra`: more top-level keys (a partial reference's block).

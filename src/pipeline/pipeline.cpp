@@ -26,6 +26,8 @@
 #include "pipeline/interrupt.hpp"
 #include "pipeline/online.hpp"
 #include "pipeline/progress.hpp"
+#include "core/input_file.hpp"
+#include "runfolder/json_file.hpp"
 #include "runfolder/run_files.hpp"
 #include "pipeline/odometry_stages.hpp"
 #include "pipeline/pose_file_source.hpp"
@@ -90,29 +92,29 @@ void CheckScanRange(const RunOptions& options, std::optional<std::size_t> num_sc
 }
 
 void WriteRunOptions(const RunFolder& run, const RunOptions& o) {
-    nlohmann::json j = {{"dataset", DatasetName(o.dataset)}, {"poses", PoseSourceName(o.poses)},
-                        {"poses_file", o.poses_file.empty() ? "" : fs::absolute(o.poses_file).string()},
-                        {"gt_file", o.gt_file.empty() ? "" : fs::absolute(o.gt_file).string()},
-                        {"from", o.from}, {"to", o.to ? nlohmann::json(*o.to) : nlohmann::json(nullptr)},
-                        {"allow_truncated", o.allow_truncated}};
-    WriteFileAtomically(run.root() / "run_options.json", [&j](std::ostream& out) { out << std::setw(2) << j << '\n'; });
+    nlohmann::json j = {{"poses", PoseSourceName(o.poses)}, {"from", o.from},
+                        {"to", o.to ? nlohmann::json(*o.to) : nlohmann::json(nullptr)}, {"allow_truncated", o.allow_truncated}};
+    // Paths keep their bytes even when they are not UTF-8: `revisit eval` opens them again.
+    PutPath(j, "dataset", DatasetName(o.dataset));
+    PutPath(j, "poses_file", o.poses_file.empty() ? fs::path() : fs::absolute(o.poses_file));
+    PutPath(j, "gt_file", o.gt_file.empty() ? fs::path() : fs::absolute(o.gt_file));
+    WriteJsonFile(run.root() / "run_options.json", j);
 }
 
 RunOptions ReadRunOptions(const RunFolder& run) {
     const fs::path file = run.root() / "run_options.json";
-    std::ifstream in(file);
-    if (!in) throw DatasetError(file, "cannot open (not a revisit run folder?)");
+    std::ifstream in = OpenForReading(file);
     try {
         const auto j = nlohmann::json::parse(in);
         RunOptions o;
-        o.dataset = j.at("dataset").get<std::string>();
+        o.dataset = GetPath(j, "dataset");
         const std::string poses = j.at("poses").get<std::string>();
         o.poses = poses == "odometry" ? PoseSource::kOdometry
                   : poses == "dataset"  ? PoseSource::kDataset
                   : poses == "prior"    ? PoseSource::kPrior
                                         : PoseSource::kFile;
-        o.poses_file = j.at("poses_file").get<std::string>();
-        o.gt_file = j.at("gt_file").get<std::string>();
+        o.poses_file = GetPath(j, "poses_file");
+        o.gt_file = GetPath(j, "gt_file");
         o.from = j.at("from").get<std::size_t>();
         if (!j.at("to").is_null()) o.to = j.at("to").get<std::size_t>();
         o.allow_truncated = j.value("allow_truncated", false);
@@ -318,6 +320,11 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     if (unpaired.count > 0) {
         log << "note: " << (ground_truth.active() ? options.gt_file.string() + ": " : std::string()) << unpaired.Describe()
             << (ground_truth.by_time() ? "; the reference: " + ground_truth.DescribeSpan() : std::string()) << '\n';
+    }
+    if (read_to_end && options.to && *options.to >= reader->Stats().scans) {
+        // As --from past the end is an error: the range asked for is not silently shortened.
+        log << "note: --to " << *options.to << " is past the end: the dataset has " << reader->Stats().scans
+            << " scans; the run covers scans " << options.from << " .. " << reader->Stats().scans - 1 << '\n';
     }
     const std::string drops = DescribeDrops(reader->Stats());
     if (!drops.empty()) log << "note: " << drops << '\n';

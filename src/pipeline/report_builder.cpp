@@ -14,13 +14,14 @@
 #include <sstream>
 
 #include "closures/database_io.hpp"
-#include "core/owned_files.hpp"
 #include "core/png_size.hpp"
 #include "evaluation/map_metrics.hpp"
 #include "evaluation/trajectory_metrics.hpp"
 #include "runfolder/csv.hpp"
 #include "runfolder/folder_map_store.hpp"
+#include "pipeline/interrupt.hpp"
 #include "pipeline/progress.hpp"
+#include "runfolder/staged_folder.hpp"
 #include "io/cloud_files.hpp"
 #include "runfolder/run_files.hpp"
 #include "settings/scene_scale_watch.hpp"
@@ -309,18 +310,30 @@ ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string
 double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const ReportConfig report_config = RunReportConfig(run, options.overrides);
-    // report/ is regenerated: pages of an earlier report (or of `inspect`) would be stale and unlinked.
-    // Only the kinds of file the report writes go, never through a link (core/owned_files.hpp).
-    RemoveOwnFiles(run.report_dir(), {".html", ".png", ".svg"});
+    // The new report is built beside the old one and swapped in when complete: a failing input or
+    // Ctrl-C leaves the old report as it was. Only the kinds of file the report writes are ever
+    // removed, never through a link (runfolder/staged_folder.hpp).
+    StagedFolder staged(run.report_dir(), {".html", ".png", ".svg"});
+    const auto stop_if_interrupted = [] {
+        if (InterruptRequested()) throw Interrupted("interrupted; the report was not replaced");
+    };
+    stop_if_interrupted();
     const ReportInput input = LoadReportInput(run);
     // The database is read once, up front: a damaged one is reported even when no rendered page needs keypoints.
     if (!input.map_ids.empty() && input.load_keypoints) input.load_keypoints(input.map_ids.front());
     std::optional<Progress> progress;
-    const auto stats = WriteReport(input, run.report_dir(), report_config, [&](std::size_t done, std::size_t total) {
+    const auto stats = WriteReport(input, staged.path(), report_config, [&](std::size_t done, std::size_t total) {
+        stop_if_interrupted();
         if (!progress) progress.emplace(log, Progress::DetectMode(options.quiet), total, "pages");
         if (done < total) progress->Update(done);
         else progress->Finish(done);
     });
+    stop_if_interrupted();
+    const fs::path kept = staged.Commit();
+    if (!kept.empty()) {
+        log << "warning: the previous " << run.report_dir().string() << " held files revisit did not write; kept them in "
+            << kept.string() << '\n';
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log << "report: " << stats.pages << " pages, " << stats.images << " pictures in " << FormatNumber(seconds, 1) << " s\n";
     return seconds;

@@ -27,7 +27,8 @@ struct ReportRunOptions {
 };
 
 /// Regenerates run/report/: index.html, its pictures and the bounded set of pages (report_plan.hpp), with a
-/// progress line on `log`. Returns the wall time [s].
+/// progress line on `log`. The new report is built beside the old one and replaces it when complete; on
+/// an error or Ctrl-C (throws Interrupted) the old report stays. Returns the wall time [s].
 double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOptions& options = {});
 
 }  // namespace revisit

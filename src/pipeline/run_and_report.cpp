@@ -15,17 +15,24 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
     const RunFolder run(options.out);
     std::optional<RunEvaluation> evaluation;
     PostRunSeconds after_chain;
+    bool report_written = false;
     if (state.complete) {
         const auto start = std::chrono::steady_clock::now();
         // From the run folder as written, as `revisit eval` reads it: the poses' files hold 9 decimals,
         // so the metrics (and the ground truth's cache key) are the ones a later eval recomputes.
         evaluation = EvaluateRun(run, ReadRunState(run), options, config, log);
         after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        // Ctrl-C after the chain: the run folder is complete; the report is skipped, or said to be partial.
-        if (config.output.write_report && !InterruptRequested()) after_chain.report = WriteRunReport(run, log, {options.quiet, {}});
-        if (InterruptRequested()) {
-            log << "interrupted during evaluation or the report: the run folder is complete, the report may be "
-                   "missing or partial; redo it with `revisit report "
+        // Ctrl-C after the chain: the run folder is complete; the report is skipped (an earlier one stays).
+        if (config.output.write_report && !InterruptRequested()) {
+            try {
+                after_chain.report = WriteRunReport(run, log, {options.quiet, {}});
+                report_written = true;
+            } catch (const Interrupted&) {
+            }
+        }
+        if (InterruptRequested() && !report_written) {
+            log << "interrupted during the evaluation or the report: the run folder is complete, the report was skipped; "
+                   "write it with `revisit report "
                 << run.root().string() << "`\n";
         }
     } else {
@@ -34,7 +41,8 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
     }
     PrintRunSummary(out, state, evaluation, after_chain);
     out << "\nrun folder: " << run.root().string() << '\n';
-    if (state.complete && config.output.write_report) out << "report:     " << run.report_index().string() << '\n';
+    if (report_written) out << "report:     " << run.report_index().string() << '\n';
+    else if (config.output.write_report) out << "report:     skipped (interrupted); `revisit report " << run.root().string() << "` writes it\n";
     return state;
 }
 

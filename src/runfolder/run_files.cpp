@@ -13,6 +13,8 @@
 #include "io/trajectory_io.hpp"
 #include "optimization/trajectory_correction.hpp"
 #include "runfolder/csv.hpp"
+#include "runfolder/json_file.hpp"
+#include "runfolder/run_manifest.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
@@ -49,7 +51,7 @@ std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<st
 }
 
 void WriteJson(const fs::path& file, const json& value) {
-    WriteFileAtomically(file, [&value](std::ostream& out) { out << std::setw(2) << value << '\n'; });
+    WriteJsonFile(file, value);
 }
 
 json ReadJson(const fs::path& file) {
@@ -240,12 +242,13 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
                                {"peak_rss_kb", state.peak_rss_kb}, {"odometry_fallbacks", state.odometry_fallbacks},
                                {"reference_scans", state.reference_scans},
                                {"setting_updates", SettingUpdatesJson(state.setting_updates)},
-                               {"revisit_version", "0.1.0"}});
+                               {"revisit_version", "0.1.0"}, {"files", ManifestJson(ListRunFiles(run))}});
 }
 
 RunState ReadRunState(const RunFolder& run) {
     RunState state;
     const json info = ReadJson(run.run_info());
+    CheckRunManifest(run, info);  // before any file is trusted
     try {
         state.dataset = info.at("dataset").get<std::string>();
         state.format = info.at("format").get<std::string>();

@@ -12,13 +12,39 @@
 namespace revisit {
 namespace fs = std::filesystem;
 
+namespace {
+/// A file name a run writes at the top of its folder (run_folder.hpp's names, the evaluation's files).
+bool IsRunResultName(const std::string& name) {
+    static const char* const kNames[] = {"config.yaml", "run.json", "run_options.json", "poses_odometry_kitti.txt",
+                                         "poses_odometry_tum.txt", "poses_corrected_kitti.txt", "poses_corrected_tum.txt",
+                                         "poses_reference_tum.txt", "closures.csv", "local_maps.csv", "comparisons.csv",
+                                         "metrics.json", "timings.json", "database.bin", "map_corrected.ply",
+                                         "comparison.md", "ground_truth_closures.txt"};
+    for (const char* n : kNames) {
+        if (name == n) return true;
+    }
+    return name.rfind("pr_curve_", 0) == 0 && fs::path(name).extension() == ".csv";
+}
+}  // namespace
+
 RunFolder RunFolder::Create(const fs::path& root, bool force) {
     PrepareOutputFolder(root, force);
     // With --force into an earlier folder: a linked subfolder would take the results outside the run.
     RefuseLinkedFolder(root / "maps");
+    RefuseLinkedFolder(root / "closures");
     RefuseLinkedFolder(root / "report");
+    RemoveEarlierResults(root);
     fs::create_directories(root / "maps");
     return RunFolder(root);
+}
+
+void RunFolder::RemoveEarlierResults(const fs::path& root) {
+    // What an earlier run wrote and this one may not (no reference: no metrics; fewer maps or
+    // closures): left there it would be read as this run's. Only revisit's own names go.
+    RemoveOwnFilesIf(root, IsRunResultName);
+    RemoveOwnFolder(root / "maps", {".bin", ".png"});
+    RemoveOwnFolder(root / "closures", {".json"});
+    RemoveOwnFolder(root / "report", {".html", ".png", ".svg"});
 }
 
 RunFolder RunFolder::Open(const fs::path& root) {

@@ -10,8 +10,12 @@ class RunFolder {
   public:
     explicit RunFolder(std::filesystem::path root) : root_(std::move(root)) {}
 
-    /// Creates the folder; refuses a non-empty one unless `force` (DatasetError names it).
+    /// Creates the folder; refuses a non-empty one unless `force` (DatasetError names it). With
+    /// `force`, an earlier run's results there are removed first (RemoveEarlierResults).
     static RunFolder Create(const std::filesystem::path& root, bool force);
+    /// Removes the files a run writes (by their names: run.json, closures.csv, maps/map_*.bin, report
+    /// pages, ...) from `root`, so nothing of an earlier run is read as a new one's; other files stay.
+    static void RemoveEarlierResults(const std::filesystem::path& root);
     /// Opens an existing run for reading; throws DatasetError when it is not a run folder.
     static RunFolder Open(const std::filesystem::path& root);
 

@@ -140,20 +140,26 @@ void ScoreSessions(MergeResult& result) {
 
 }  // namespace
 
-SessionRun LoadSessionRun(const fs::path& folder) {
+SessionRun LoadSessionRun(const fs::path& folder, bool allow_incomplete, std::ostream* log) {
     SessionRun session;
     session.folder = fs::absolute(folder).lexically_normal();
     const RunFolder run = RunFolder::Open(session.folder);
     session.options = ReadRunOptions(run);
     session.state = ReadRunState(run);
+    if (!session.state.complete) {
+        const std::string problem = "is an interrupted run (run.json: complete = false): it covers " +
+                                    std::to_string(session.state.odometry.size()) + " scans, not its whole input";
+        if (!allow_incomplete) throw DatasetError(folder, problem + "; finish it, or pass --allow-incomplete to merge it as it is");
+        if (log) *log << "warning: " << folder.string() << ": " << problem << "; merged as it is (--allow-incomplete)\n";
+    }
     if (!fs::exists(run.database())) throw DatasetError(run.database(), "missing: the run did not finish (no closure database)");
     if (session.state.maps.empty()) throw DatasetError(run.local_maps_csv(), "no local maps: nothing to merge");
     return session;
 }
 
-std::vector<SessionRun> LoadSessionRuns(const std::vector<fs::path>& folders) {
+std::vector<SessionRun> LoadSessionRuns(const std::vector<fs::path>& folders, bool allow_incomplete, std::ostream* log) {
     std::vector<SessionRun> sessions;
-    for (const auto& folder : folders) sessions.push_back(LoadSessionRun(folder));
+    for (const auto& folder : folders) sessions.push_back(LoadSessionRun(folder, allow_incomplete, log));
     const auto key = [](const SessionRun& s) {
         return std::make_tuple(s.options.dataset.string(), s.options.from, s.options.to.value_or(SIZE_MAX), s.folder.string());
     };

@@ -24,13 +24,16 @@ struct SessionRun {
 };
 
 /// Opens a finished run; throws DatasetError naming the folder or the file that is missing or corrupt
-/// (run.json, run_options.json, the trajectories, local_maps.csv, closures.csv, database.bin).
-SessionRun LoadSessionRun(const std::filesystem::path& folder);
+/// (run.json, run_options.json, the trajectories, local_maps.csv, closures.csv, database.bin). An
+/// interrupted run (run.json: complete = false) covers only part of its data: refused, naming it,
+/// unless `allow_incomplete` (--allow-incomplete), when `log` gets a warning naming it.
+SessionRun LoadSessionRun(const std::filesystem::path& folder, bool allow_incomplete = false, std::ostream* log = nullptr);
 
 /// The runs in their canonical order, whatever order they were given in: by dataset path, then
 /// --from, --to, then folder. The first is the anchor: its odometry frame becomes the common frame.
 /// Throws ConfigError when the same run folder is given twice.
-std::vector<SessionRun> LoadSessionRuns(const std::vector<std::filesystem::path>& folders);
+std::vector<SessionRun> LoadSessionRuns(const std::vector<std::filesystem::path>& folders, bool allow_incomplete = false,
+                                        std::ostream* log = nullptr);
 
 /// A cross-session closure candidate and its verdict. `closure` ids are the runs' map ids.
 struct CrossClosure {
@@ -73,6 +76,7 @@ void PrintMergeSummary(std::ostream& out, const MergeResult& result, const std::
 /// `revisit merge` and `run --against`: loads the runs, merges with the anchor's configuration plus
 /// `overrides`, writes `out`, prints the summary on `out_stream`. Returns the result.
 MergeResult MergeRunFolders(const std::vector<std::filesystem::path>& runs, const std::filesystem::path& out, bool force,
-                            const std::vector<std::string>& overrides, std::ostream& log, std::ostream& out_stream);
+                            const std::vector<std::string>& overrides, std::ostream& log, std::ostream& out_stream,
+                            bool allow_incomplete = false);
 
 }  // namespace revisit

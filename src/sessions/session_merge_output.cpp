@@ -10,6 +10,7 @@
 #include "io/cloud_files.hpp"
 #include "io/output_folder.hpp"
 #include "io/trajectory_io.hpp"
+#include "runfolder/json_file.hpp"
 #include "optimization/global_map.hpp"
 #include "runfolder/csv.hpp"
 #include "runfolder/folder_map_store.hpp"
@@ -151,7 +152,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
         {"joint_map", "map_joint.ply"},
         {"joint_map_points", joint_map.size()},
         {"graph_iterations", result.graph.iterations}};
-    WriteFileAtomically(out / "sessions.json", [&summary](std::ostream& o) { o << std::setw(2) << summary << '\n'; });
+    WriteJsonFile(out / "sessions.json", summary);
 }
 
 void PrintMergeSummary(std::ostream& out, const MergeResult& result, const fs::path& folder) {
@@ -178,8 +179,9 @@ void PrintMergeSummary(std::ostream& out, const MergeResult& result, const fs::p
 }
 
 MergeResult MergeRunFolders(const std::vector<fs::path>& runs, const fs::path& out, bool force,
-                            const std::vector<std::string>& overrides, std::ostream& log, std::ostream& out_stream) {
-    auto sessions = LoadSessionRuns(runs);
+                            const std::vector<std::string>& overrides, std::ostream& log, std::ostream& out_stream,
+                            bool allow_incomplete) {
+    auto sessions = LoadSessionRuns(runs, allow_incomplete, &log);
     const PipelineConfig config = MergeConfig(sessions.front(), overrides);
     MergeResult result = MergeSessions(std::move(sessions), config, log);
     WriteMerge(out, force, result, config);

@@ -256,6 +256,11 @@ AutoSettings ApplyAutoSettings(PipelineConfig& config, const DataProfile& profil
     std::optional<double> given_map_length;
     if (config.explicit_keys.count("local_map.split_distance") != 0) given_map_length = schema.Number("local_map.split_distance");
     result.choices = ChooseSettings(profile, aperture, given_map_length);
+    if (profile.far_range > 0.0) {
+        result.warnings.push_back("scan " + std::to_string(profile.far_scan) + " has a point " + Number(profile.far_range, 0) +
+                                  " m away (no sensor measures beyond " + Number(kMaxPlausibleRange, 0) +
+                                  " m): damaged points or another unit?");
+    }
     for (auto& choice : result.choices) {
         if (config.explicit_keys.count(choice.key) == 0) {
             schema.ApplyOverride(choice.key + "=" + ValueText(choice));

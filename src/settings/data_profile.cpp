@@ -31,7 +31,10 @@ constexpr std::size_t kVoxelCountScans = 5;
 std::size_t OccupiedVoxels(const std::vector<Eigen::Vector3f>& points, double voxel) {
     std::unordered_set<Voxel, VoxelHash> occupied;
     occupied.reserve(points.size() / 4);
-    for (const auto& p : points) occupied.insert(VoxelOf(p.cast<double>(), voxel));
+    for (const auto& p : points) {
+        // A point beyond any sensor's reach is damage (named by the profile); its voxel index would overflow.
+        if (p.allFinite() && p.cast<double>().norm() <= kMaxPlausibleRange) occupied.insert(VoxelOf(p.cast<double>(), voxel));
+    }
     return occupied.size();
 }
 
@@ -63,6 +66,13 @@ const std::vector<double>& VoxelCandidates() {
     return candidates;
 }
 
+void DataProfiler::NoteFarPoint(const Scan& scan, double range) {
+    if (range > kMaxPlausibleRange && far_range_ == 0.0) {
+        far_scan_ = scan.index;
+        far_range_ = range;
+    }
+}
+
 bool DataProfiler::Add(const Scan& scan) {
     if (Done()) return false;
     if (scan.points.empty()) return true;
@@ -80,7 +90,8 @@ bool DataProfiler::Add(const Scan& scan) {
         elevation_histogram_.resize(static_cast<std::size_t>(180.0 / kElevationBinDeg) + 1, 0);
         for (const auto& point : scan.points) {
             const double range = point.cast<double>().norm();
-            if (!(range > 0.0)) continue;
+            if (!(range > 0.0) || !std::isfinite(range)) continue;
+            NoteFarPoint(scan, range);
             const double elevation = std::asin(std::clamp(double(point.z()) / range, -1.0, 1.0)) * 180.0 / M_PI;
             ++elevation_histogram_[static_cast<std::size_t>((elevation + 90.0) / kElevationBinDeg)];
         }
@@ -94,7 +105,8 @@ bool DataProfiler::Add(const Scan& scan) {
     for (std::size_t i = 0; i < scan.points.size(); i += stride) {
         const Eigen::Vector3d p = scan.points[i].cast<double>();
         const double range = p.norm();
-        if (!(range > 0.0)) continue;
+        if (!(range > 0.0) || !std::isfinite(range)) continue;
+        NoteFarPoint(scan, range);
         if (p.z() != 0.0) planar_ = false;
         ranges_.push_back(range);
         elevations_.push_back(std::asin(std::clamp(p.z() / range, -1.0, 1.0)) * 180.0 / M_PI);
@@ -115,6 +127,8 @@ DataProfile DataProfiler::Profile() const {
     profile.range_p95 = Quantile(ranges_, 0.95);
     profile.range_p99 = Quantile(ranges_, 0.99);
     profile.range_max = ranges_.empty() ? 0.0 : *std::max_element(ranges_.begin(), ranges_.end());
+    profile.far_scan = far_scan_;
+    profile.far_range = far_range_;
     profile.horizontal_fov_deg = static_cast<double>(std::count(azimuth_bins_.begin(), azimuth_bins_.end(), true));
     profile.vertical_fov_deg = planar_ ? 0.0 : Quantile(elevations_, 0.99) - Quantile(elevations_, 0.01);
     if (!planar_) {

@@ -20,6 +20,10 @@ struct DataProfile {
     double range_p95 = 0.0;         ///< [m]
     double range_p99 = 0.0;         ///< [m]
     double range_max = 0.0;         ///< [m]
+    /// The first scan (its index in the sequence) with a point beyond kMaxPlausibleRange, and that
+    /// point's range [m]; far_range 0: none. The percentiles above are robust to a few such points.
+    std::size_t far_scan = 0;
+    double far_range = 0.0;
     double horizontal_fov_deg = 0.0;  ///< [deg] azimuth covered (1-degree bins with points)
     double vertical_fov_deg = 0.0;    ///< [deg] elevation span, 1st to 99th percentile (0 for 2D lasers)
     /// [deg] mean elevation step between the sensor's rings (vertical FOV / rings), 0 when the points do
@@ -45,6 +49,10 @@ struct DataProfile {
     std::vector<std::string> Describe() const;
 };
 
+/// [m] No lidar or laser measures beyond this: a point farther away is damage or a unit mistake,
+/// reported with its scan (the profile's memory does not depend on it either way).
+constexpr double kMaxPlausibleRange = 10'000.0;
+
 /// Map voxel sizes the automatic settings choose from [m].
 const std::vector<double>& VoxelCandidates();
 
@@ -60,6 +68,8 @@ class DataProfiler {
     DataProfile Profile() const;
 
   private:
+    void NoteFarPoint(const Scan& scan, double range);
+
     std::size_t max_scans_;
     std::size_t scans_ = 0;
     std::vector<double> ranges_;      ///< sampled point ranges [m]
@@ -70,6 +80,8 @@ class DataProfiler {
     std::vector<double> timestamps_;
     std::vector<std::vector<double>> source_points_;  ///< per voxel candidate, per scan
     std::vector<double> ground_tilts_;                ///< [deg] per scan with a ground plane
+    std::size_t far_scan_ = 0;
+    double far_range_ = 0.0;
     bool planar_ = true;
     bool point_times_ = false;
     bool odometry_prior_ = false;

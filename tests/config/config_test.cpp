@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "config/config.hpp"
+#include "config/config_schema.hpp"
 
 namespace revisit {
 namespace {
@@ -90,6 +91,38 @@ TEST(Configs, AnEmptyTextValueIsTheEmptyDefault) {
     EXPECT_EQ(empty.input.sensor_label, "");
     // A number key still needs a number.
     EXPECT_THROW(LoadConfig({}, {"density.resolution="}), ConfigError);
+}
+
+TEST(Configs, EveryKeyRoundTripsThroughTheWrittenConfigIncludingQuotesAndBackslashes) {
+    // Every text key holds quotes, a backslash, '#', ': ' and a tab; the others their defaults.
+    const std::string nasty = "a\"b\\c 'd' #e: f\tg";
+    PipelineConfig config;
+    std::size_t texts = 0;
+    const ConfigSchema fields = MakeConfigSchema(config);
+    for (const auto& entry : fields.entries()) {
+        if (auto* const* text = std::get_if<std::string*>(&entry.field)) {
+            **text = nasty + entry.key;
+            ++texts;
+        }
+    }
+    ASSERT_GT(texts, 1u);
+    const std::string written = DumpConfig(config);
+    PipelineConfig read;
+    ConfigSchema schema = MakeConfigSchema(read);
+    ASSERT_NO_THROW(schema.Apply(YAML::Load(written), "config.yaml")) << written;
+    EXPECT_EQ(DumpConfig(read), written);
+    EXPECT_EQ(schema.assigned().size(), schema.entries().size());  // every key was read back
+    for (const auto& entry : schema.entries()) {
+        if (auto* const* text = std::get_if<std::string*>(&entry.field)) EXPECT_EQ(**text, nasty + entry.key);
+    }
+    // The same through a file and --set, as `revisit run` writes config.yaml and a run reads it back.
+    const auto given = LoadConfig({}, {"fleet.slurm_partition=a\"b"});
+    EXPECT_EQ(given.fleet.slurm_partition, "a\"b");
+    std::istringstream lines(DumpConfig(given));
+    std::string line;
+    bool found = false;
+    while (std::getline(lines, line)) found = found || line.find("slurm_partition: \"a\\\"b\"") != std::string::npos;
+    EXPECT_TRUE(found) << DumpConfig(given);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "io/reader.hpp"
+#include "io/writer.hpp"
 #include "read_all.hpp"
 #include "test_data.hpp"
 
@@ -55,6 +56,28 @@ TEST(Cli, InfoOnARawlogWithoutScansFails) {
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.output.find("no range scans found"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("CObservationBearingRange x600"), std::string::npos) << result.output;
+}
+
+TEST(Cli, ASensorLabelWithTerminalEscapesIsPrintedEscaped) {
+    test::TempDir dir;
+    const auto file = dir / "label.rawlog";
+    // Clear screen, a window title, and a fake line after a carriage return.
+    const std::string label = "LIDAR\x1b[2J\x1b]0;owned\x07\rrevisit: all good";
+    {
+        auto writer = CreateRawlogWriter(file);
+        for (int s = 0; s < 3; ++s) {
+            Scan scan;
+            scan.timestamp = s;
+            scan.sensor_label = label;
+            for (int i = 0; i < 50; ++i) scan.points.emplace_back(i * 0.2f, float(s), 0.3f);
+            writer->Write(scan);
+        }
+        writer->Finish();
+    }
+    const auto result = RunCli("info " + Quote(file.string()));
+    EXPECT_EQ(result.output.find('\x1b'), std::string::npos) << result.output;
+    EXPECT_EQ(result.output.find('\x07'), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("LIDAR\\x1b[2J\\x1b]0;owned\\x07\\x0drevisit: all good"), std::string::npos) << result.output;
 }
 
 TEST(Cli, ConvertKittiToRawlogAndBackIsBitExact) {

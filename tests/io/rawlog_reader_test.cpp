@@ -171,3 +171,70 @@ TEST(RawlogReader, LaserApertureOverrideSpreadsTheBeams) {
 }
 }  // namespace
 }  // namespace revisit
+
+namespace revisit {
+namespace {
+namespace fs = std::filesystem;
+
+/// A plain rawlog of scans at `times` [s], 40 points each.
+void WriteTimedRawlog(const fs::path& file, const std::vector<double>& times) {
+    auto writer = CreateRawlogWriter(file);
+    for (std::size_t s = 0; s < times.size(); ++s) {
+        Scan scan;
+        scan.timestamp = times[s];
+        for (int i = 0; i < 40; ++i) scan.points.emplace_back(i * 0.25f, static_cast<float>(s), 0.5f);
+        writer->Write(scan);
+    }
+    writer->Finish();
+}
+
+std::string ReadError(const fs::path& file, const ReaderOptions& options = {}) {
+    try {
+        test::ReadAllScans(file, options);
+    } catch (const DatasetError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(RawlogReader, TimeGoingBackwardsIsANamedErrorWithItsObjectWhileReading) {
+    test::TempDir dir;
+    // Two recordings concatenated: 5, 6, 7 then 2, 3.
+    WriteTimedRawlog(dir / "twice.rawlog", {5.0, 6.0, 7.0, 2.0, 3.0});
+    const std::string error = ReadError(dir / "twice.rawlog");
+    EXPECT_NE(error.find((dir / "twice.rawlog").string()), std::string::npos) << error;
+    EXPECT_NE(error.find("time goes backwards in object 3 (starts at byte "), std::string::npos) << error;
+    EXPECT_NE(error.find("scan 3 at 2 s after 7 s"), std::string::npos) << error;
+    // --allow-truncated keeps the scans before it, and says why reading stopped.
+    ReaderOptions allow;
+    allow.allow_truncated = true;
+    auto reader = OpenDataset(dir / "twice.rawlog", allow);
+    std::size_t scans = 0;
+    while (reader->Next()) ++scans;
+    EXPECT_EQ(scans, 3u);
+    EXPECT_NE(reader->Info().truncated.find("time goes backwards"), std::string::npos);
+    // Equal times (a sensor without a clock writes 0) are not a step backwards.
+    WriteTimedRawlog(dir / "zero.rawlog", {0.0, 0.0, 0.0});
+    EXPECT_EQ(test::ReadAllScans(dir / "zero.rawlog").size(), 3u);
+}
+
+TEST(RawlogReader, DamageIsNamedAtTheObjectsOwnOffset) {
+    test::TempDir dir;
+    WriteTimedRawlog(dir / "two.rawlog", {1.0, 2.0});
+    WriteTimedRawlog(dir / "three.rawlog", {1.0, 2.0, 3.0});
+    const std::string two = test::ReadFile(dir / "two.rawlog");
+    std::string bytes = test::ReadFile(dir / "three.rawlog");
+    ASSERT_EQ(bytes.compare(0, two.size(), two), 0);  // object 2 starts where the first two end
+    // A flipped bit in object 2's class name ("mrpt::obs::CObs..." -> "...COBs...": no such class).
+    ASSERT_EQ(bytes.substr(two.size() + 1, 15), "mrpt::obs::CObs");
+    bytes[two.size() + 14] ^= 0x20;
+    std::ofstream(dir / "flipped.rawlog", std::ios::binary) << bytes;
+    const std::string error = ReadError(dir / "flipped.rawlog");
+    EXPECT_NE(error.find("reading stopped in object 2 (starts at byte " + std::to_string(two.size()) + " of " +
+                         std::to_string(bytes.size()) + ")"),
+              std::string::npos)
+        << error;
+}
+
+}  // namespace
+}  // namespace revisit

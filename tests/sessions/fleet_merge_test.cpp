@@ -93,6 +93,29 @@ TEST(Merge, UnconnectedSessionsAndMissingOrCorruptRunsAreReported) {
     EXPECT_EQ(corrupt.exit_code, 1);
     EXPECT_NE(corrupt.output.find((broken / "database.bin").string()), std::string::npos) << corrupt.output;
 
+    // An interrupted run (complete = false) is refused, naming it, unless --allow-incomplete.
+    const fs::path partial = fleet.dir() / "partial_run";
+    fs::copy(run_c, partial, fs::copy_options::recursive);
+    {
+        auto info = nlohmann::json::parse(test::ReadFile(partial / "run.json"));
+        info["complete"] = false;
+        std::ofstream(partial / "run.json", std::ios::trunc) << info.dump(2);
+    }
+    const std::string merge_partial = "merge " + Quote(run_a.string()) + " " + Quote(partial.string()) + " --out ";
+    const auto refused = RunCli(merge_partial + Quote((fleet.dir() / "merge_partial").string()));
+    EXPECT_EQ(refused.exit_code, 1) << refused.output;
+    EXPECT_NE(refused.output.find(partial.string() + ": is an interrupted run"), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("--allow-incomplete"), std::string::npos) << refused.output;
+    EXPECT_FALSE(fs::exists(fleet.dir() / "merge_partial"));
+    const auto allowed = RunCli(merge_partial + Quote((fleet.dir() / "merge_partial").string()) + " --allow-incomplete");
+    EXPECT_EQ(allowed.exit_code, 3) << allowed.output;  // merged (C is not tied to A, as above)
+    EXPECT_NE(allowed.output.find("warning: " + partial.string() + ": is an interrupted run"), std::string::npos) << allowed.output;
+    const auto against_partial = RunCli("run " + Quote(fleet.Elsewhere().string()) + " --quiet --out " +
+                                        Quote((fleet.dir() / "run_never2").string()) + " --against " + Quote(partial.string()));
+    EXPECT_EQ(against_partial.exit_code, 1) << against_partial.output;
+    EXPECT_NE(against_partial.output.find("--allow-incomplete"), std::string::npos) << against_partial.output;
+    EXPECT_FALSE(fs::exists(fleet.dir() / "run_never2"));
+
     // --against checks the earlier runs before reading a single scan: nothing is written.
     const fs::path never = fleet.dir() / "run_never";
     const auto against = RunCli("run " + Quote(fleet.Elsewhere().string()) + " --quiet --out " + Quote(never.string()) +

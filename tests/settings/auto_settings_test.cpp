@@ -2,8 +2,11 @@
 /// explicit values win; a 2D laser's wrong stated aperture is measured and corrected.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "closures/ground_alignment.hpp"
 #include "io/reader.hpp"
 #include "io/writer.hpp"
 #include "settings/auto_settings.hpp"
@@ -127,6 +130,52 @@ TEST(AutoSettings, RingsADegreeOrMoreApartGetPointToPlaneRegistration) {
               "point_to_point <- " + std::to_string(dense.rings) + " rings 0.42 deg apart");
     EXPECT_EQ(ChosenText(ChooseSettings(none, std::nullopt, std::nullopt), "odometry.residual"),
               "point_to_point <- no distinct rings");
+}
+
+TEST(AutoSettings, FarPointsKeepTheProfileSmallAndAreNamedWithTheirScan) {
+    // A VLP-16-like scan over flat ground with every 20th point thrown out to `far` metres: the
+    // ground grid spanned the points' bounding box (1e5 m at 1 m cells: 4e10 cells, bad_alloc).
+    const auto far_scan = [](std::size_t index, float far) {
+        Scan scan = RingScan(16, [](double, int k) { return -15.0 + 2.0 * k; }, index);
+        for (auto& p : scan.points) p.z() = std::max(p.z(), -1.7f);  // the lower rings hit the ground
+        for (std::size_t i = 0; i < scan.points.size(); i += 20) scan.points[i].head<2>() *= far / 20.0f;
+        return scan;
+    };
+    for (const float far : {3e4f, 1e5f, 1e30f}) {
+        DataProfiler profiler(3);
+        profiler.Add(RingScan(16, [](double, int k) { return -15.0 + 2.0 * k; }, 0));
+        profiler.Add(far_scan(7, far));
+        profiler.Add(far_scan(8, far));
+        const DataProfile profile = profiler.Profile();
+        EXPECT_EQ(profile.far_scan, 7u) << far;
+        EXPECT_NEAR(profile.far_range / far, 1.0, 0.01) << far;
+        EXPECT_LT(profile.range_p50, 30.0);  // the median is the scene's
+        PipelineConfig config;
+        const AutoSettings settings = ApplyAutoSettings(config, profile);
+        bool named = false;
+        for (const auto& w : settings.warnings) named = named || w.rfind("scan 7 has a point ", 0) == 0;
+        EXPECT_TRUE(named) << far;
+        EXPECT_LE(config.odometry.max_range, 300.0);
+    }
+}
+
+TEST(GroundAlignment, FarPointsDoNotChangeTheGroundFound) {
+    // Ground at z = -1.5 tilted 5 degrees about x, 20 m across, plus one point per metre far away.
+    const double tilt = 5.0 * M_PI / 180.0;
+    std::vector<Eigen::Vector3f> points;
+    for (int x = -10; x <= 10; ++x) {
+        for (int y = -10; y <= 10; ++y) points.emplace_back(float(x) + 0.3f, float(y) + 0.3f, float(-1.5 + std::tan(tilt) * y));
+    }
+    const GroundAlignment near = AlignGround(points);
+    for (const float far : {3e4f, 1e5f, 3e38f}) {
+        std::vector<Eigen::Vector3f> with_far = points;
+        for (int k = 0; k < 20; ++k) with_far.emplace_back(far - float(k), far, 50.0f);
+        with_far.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f);
+        const GroundAlignment result = AlignGround(with_far);
+        ASSERT_TRUE(result.aligned) << far;
+        EXPECT_EQ(result.num_ground_points, near.num_ground_points) << far;
+        EXPECT_TRUE(result.T_ground_map.isApprox(near.T_ground_map, 1e-9)) << far;
+    }
 }
 
 TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
