@@ -6,8 +6,9 @@ namespace revisit {
 
 RenderConfig MapPairRenderConfig() {
     RenderConfig config;
-    config.width = 960;
-    config.height = 720;
+    // Before and after side by side on the page: each half its width.
+    config.width = 672;
+    config.height = 504;
     config.point_size = 1.0;  // dense local maps: small points keep both colours visible where maps overlap
     config.oblique_elevation_deg = 45.0;
     config.margin = 0.02;
