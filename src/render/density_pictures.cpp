@@ -42,7 +42,7 @@ cv::Mat Colorized(const cv::Mat& boosted) {
     cv::Mat lut(1, 256, CV_8UC3);
     lut.at<cv::Vec3b>(0) = cv::Vec3b(255, 255, 255);
     for (int v = 1; v < 256; ++v) {
-        const Rgb c = DensityColor(v / 255.0);
+        const Rgb c = DensityColor(std::sqrt(v / 255.0));  // most cells are faint: spread them over the ramp
         lut.at<cv::Vec3b>(v) = cv::Vec3b(c.b, c.g, c.r);
     }
     cv::Mat bgr, out;
