@@ -9,7 +9,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libtbb-dev robin-map-dev libnanoflann-dev libopencv-dev libceres-dev
-  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev libbz2-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev libbz2-dev libpng-dev
   libmrpt-maps-dev libmrpt-opengl-dev libmrpt-img-dev mrpt-common libosmesa6-dev
   # ROS bags: MCAP chunks, rosbag2 sqlite3, ROS 1 bags through Debian's rosbag_storage (+ the message
   # packages whose types the bags carry)

@@ -22,6 +22,7 @@
 #include "pipeline/interrupt.hpp"
 #include "pipeline/progress.hpp"
 #include "runfolder/staged_folder.hpp"
+#include "pipeline/summary.hpp"
 #include "io/cloud_files.hpp"
 #include "runfolder/run_files.hpp"
 #include "settings/scene_scale_watch.hpp"
@@ -182,6 +183,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
     input.odometry_fallbacks = state.odometry_fallbacks;
     for (const auto& update : state.setting_updates) input.setting_updates.push_back(DescribeUpdate(update));
     input.corrected = Timed(state, state.corrected);
+    input.reference_is_input = ReferenceIsInput(state);
     if (state.has_reference()) {
         // Ground truth lives in its own world frame: show it where the APE alignment puts it, so the
         // pictures compare what the numbers compare (SE(3) Umeyama onto the corrected trajectory).
@@ -196,14 +198,15 @@ ReportInput LoadReportInput(const RunFolder& run) {
     for (const auto& record : state.closures) {
         // The proximity pass's registrations (no images matched: 0 votes, 0 inliers) are shown when accepted.
         const bool proximity = record.method == "proximity";
+        input.proximity_registered += proximity;
         if (record.method != "density" && !(proximity && record.accepted)) continue;
         ClosureEntry entry;
         entry.closure = record.closure;
+        entry.proximity = proximity;
         entry.accepted = record.accepted;
         entry.reached_threshold = record.refined;
         entry.verified = record.refined && record.refinement.accepted;
-        entry.reason = record.accepted ? "accepted (graph weight " + FormatNumber(record.graph_weight, 2) + ")" : record.reason;
-        if (proximity) entry.reason = "proximity pass (the corrected poses or the odometry overlay the maps): " + entry.reason;
+        entry.reason = record.accepted ? "graph weight " + FormatNumber(record.graph_weight, 2) : record.reason;
         if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first}))
             entry.reason += ", FALSE against the reference poses";
         if (record.refined) {

@@ -39,9 +39,14 @@ void PrintVerification(std::ostream& out, const RunEvaluation& e) {
 
 }  // namespace
 
-std::string DescribeApeChange(double before_m, double after_m) {
+std::string DescribeApeChange(double before_m, double after_m, bool reference_is_input) {
     std::ostringstream text;
     text << std::fixed << std::setprecision(2) << before_m << " m -> " << after_m << " m (";
+    if (reference_is_input) {
+        // Not an error against an independent reference: how far the closures moved the input poses.
+        text << "reference = input poses: the closures moved the trajectory this far from them)";
+        return text.str();
+    }
     const double change_m = after_m - before_m;
     if (std::abs(change_m) < kApeResolution || std::abs(change_m) < kApeUnchangedFraction * before_m) {
         text << "unchanged)";
@@ -113,7 +118,8 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     if (!evaluation->closure_metrics) {
         out << "  no local map lies wholly within the reference: no closure metrics\n";
         out << "\n  APE translation RMSE: "
-            << DescribeApeChange(evaluation->odometry.ape.errors.translation_stats.rmse, evaluation->corrected.ape.errors.translation_stats.rmse)
+            << DescribeApeChange(evaluation->odometry.ape.errors.translation_stats.rmse, evaluation->corrected.ape.errors.translation_stats.rmse,
+                                 ReferenceIsInput(state))
             << '\n';
         return;
     }
@@ -148,7 +154,7 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     const auto& before = evaluation->odometry.ape.errors.translation_stats;
     const auto& after = evaluation->corrected.ape.errors.translation_stats;
     if (before.rmse > 0 || after.rmse > 0)
-        out << "\n  APE translation RMSE: " << DescribeApeChange(before.rmse, after.rmse) << '\n';
+        out << "\n  APE translation RMSE: " << DescribeApeChange(before.rmse, after.rmse, ReferenceIsInput(state)) << '\n';
     PrintVerification(out, *evaluation);
 }
 

@@ -54,6 +54,26 @@ void DrawPolylines(cv::Mat& image, const std::vector<Polyline2d>& polylines, Rgb
     if (opacity < 1.0) cv::addWeighted(layer, opacity, image, 1.0 - opacity, 0.0, image);
 }
 
+void DrawDashedPolyline(cv::Mat& image, const Polyline2d& polyline, Rgb color, int thickness, double dash, double gap) {
+    if (polyline.size() < 2 || !(dash > 0.0) || !(gap >= 0.0)) return;
+    const double period = dash + gap;
+    double phase = 0.0;  // [pixels] into the current period at the start of each segment
+    for (std::size_t i = 1; i < polyline.size(); ++i) {
+        const cv::Point2d a = polyline[i - 1], d = polyline[i] - a;
+        const double length = std::hypot(d.x, d.y);
+        double s = 0.0;
+        while (s < length) {
+            const double in_period = std::fmod(phase + s, period);
+            const double step = std::min(length - s, in_period < dash ? dash - in_period : period - in_period);
+            if (in_period < dash)
+                cv::line(image, Fixed(a + d * (s / length)), Fixed(a + d * ((s + step) / length)), color.Bgr(), thickness,
+                         cv::LINE_AA, kShift);
+            s += std::max(step, 1e-6);
+        }
+        phase = std::fmod(phase + length, period);
+    }
+}
+
 void DrawLegend(cv::Mat& image, const std::vector<LegendEntry>& entries, const std::string& title) {
     if (entries.empty()) return;
     const int row = 24;

@@ -38,4 +38,7 @@ void DrawLabel(cv::Mat& image, const std::string& text, cv::Point origin, double
 using Polyline2d = std::vector<cv::Point2d>;
 void DrawPolylines(cv::Mat& image, const std::vector<Polyline2d>& polylines, Rgb color, int thickness, double opacity = 1.0);
 
+/// A polyline drawn dashed: `dash` pixels on, `gap` off, the pattern running on along the whole line.
+void DrawDashedPolyline(cv::Mat& image, const Polyline2d& polyline, Rgb color, int thickness, double dash, double gap);
+
 }  // namespace revisit

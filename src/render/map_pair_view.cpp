@@ -6,8 +6,9 @@ namespace revisit {
 
 RenderConfig MapPairRenderConfig() {
     RenderConfig config;
-    config.width = 960;
-    config.height = 720;
+    // Before and after side by side on the page (1,352 px of content): each under half its width.
+    config.width = 640;
+    config.height = 480;
     config.point_size = 1.0;  // dense local maps: small points keep both colours visible where maps overlap
     config.oblique_elevation_deg = 45.0;
     config.margin = 0.02;

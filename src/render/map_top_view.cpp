@@ -5,6 +5,8 @@
 
 #include "render/annotate.hpp"
 
+#include <opencv2/imgproc.hpp>
+
 namespace revisit {
 
 cv::Mat RenderMapTopView(const std::vector<Eigen::Vector3f>& points, const MapTopViewConfig& config) {
@@ -31,9 +33,14 @@ cv::Mat RenderMapTopView(const std::vector<Eigen::Vector3f>& points, const MapTo
         for (int col = 0; col < width; ++col) {
             const int n = count.at<std::uint16_t>(row, col);
             if (n == 0) continue;
-            const auto grey = static_cast<unsigned char>(std::max(0, 150 - 30 * (n - 1)));
+            // Dark from the first point: a sparse map (a few points per cell) must still read on white.
+            const auto grey = static_cast<unsigned char>(std::max(0, 110 - 30 * (n - 1)));
             image.at<cv::Vec3b>(row, col) = cv::Vec3b(grey, grey, grey);
         }
+    // A sparse map (a walk's few points per cell over a large extent) would be dots on white: each point then
+    // darkens its 3 x 3 neighbourhood (a grey-level erosion), which keeps walls one line, only wider.
+    const double occupied = double(cv::countNonZero(count)) / double(count.total());
+    if (occupied < 0.05) cv::erode(image, image, cv::Mat::ones(3, 3, CV_8U));
     DrawScaleBar(image, 1.0 / cell);
     return image;
 }

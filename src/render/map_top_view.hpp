@@ -9,7 +9,7 @@ namespace revisit {
 
 struct MapTopViewConfig {
     double min_pixel = 0.05;  ///< [m] finest cell (a 2D laser's map voxel)
-    int max_side = 2000;      ///< [pixels] longer side at most; the cell grows for larger maps
+    int max_side = 1270;      ///< [pixels] longer side at most, margins aside (the report's page width); the cell grows for larger maps
 };
 
 /// Top view of `points` (x east, y north up): white where no point falls, grey for one point, darker

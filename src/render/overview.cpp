@@ -31,30 +31,36 @@ cv::Mat RenderOverview(const OverviewData& data, OverviewView view, const Render
     RenderedFrame frame = OffscreenRenderer::Instance().Render(build, FrameExtent(extent, oblique, config), config.width,
                                                                config.height);
 
-    std::vector<Polyline2d> rejected, accepted;
-    for (const auto& closure : data.closures)
-        (closure.accepted ? accepted : rejected)
-            .push_back(ProjectPolyline(frame, {closure.query_position, closure.ref_position}));
     const int thick = config.line_thickness;
-    DrawPolylines(frame.image, rejected, palette::kRejected, std::max(1, thick - 1), 0.35);
-    // Ground truth as a wider band under the others: it stays visible where the corrected trajectory agrees.
-    DrawPolylines(frame.image, {ProjectPolyline(frame, data.reference)}, palette::kReference, thick + 4);
-    DrawPolylines(frame.image, {ProjectPolyline(frame, data.odometry)}, palette::kOdometry, thick);
+    // Under everything: the reference as a wide light band, so the corrected line shows on it where they agree.
+    DrawPolylines(frame.image, {ProjectPolyline(frame, data.reference)}, palette::kReferenceBand, 3 * thick + 4);
     DrawPolylines(frame.image, {ProjectPolyline(frame, data.corrected)}, palette::kCorrected, thick);
-    DrawPolylines(frame.image, accepted, palette::kAccepted, thick);
-    for (const auto& line : accepted)  // end points, so that a closure between nearby places stays visible
-        for (const auto& p : line) cv::circle(frame.image, p, thick + 2, palette::kAccepted.Bgr(), cv::FILLED, cv::LINE_AA);
+    // The odometry dashed on top: "before" stays visible where it runs along the corrected line.
+    DrawDashedPolyline(frame.image, ProjectPolyline(frame, data.odometry), palette::kOdometry, thick, 14.0, 9.0);
+    std::size_t accepted = 0, rejected = 0;
+    for (const auto& closure : data.closures) {
+        const Polyline2d at = ProjectPolyline(frame, {closure.position});
+        if (at.empty()) continue;
+        if (closure.accepted) {
+            cv::circle(frame.image, at.front(), thick + 4, palette::kBackground.Bgr(), cv::FILLED, cv::LINE_AA);
+            cv::circle(frame.image, at.front(), thick + 2, palette::kAccepted.Bgr(), cv::FILLED, cv::LINE_AA);
+            ++accepted;
+        } else {
+            cv::circle(frame.image, at.front(), thick + 2, palette::kRejected.Bgr(), 2, cv::LINE_AA);
+            ++rejected;
+        }
+    }
 
     std::vector<LegendEntry> legend;
     if (!data.map_points.empty()) {
         legend.push_back({"map, low", HeightColor(0.0), false});
         legend.push_back({"map, high", HeightColor(1.0), false});
     }
-    if (!data.odometry.empty()) legend.push_back({"odometry", palette::kOdometry});
+    if (!data.odometry.empty()) legend.push_back({"odometry (dashed)", palette::kOdometry});
     if (!data.corrected.empty()) legend.push_back({"corrected", palette::kCorrected});
-    if (!data.reference.empty()) legend.push_back({"ground truth", palette::kReference});
-    if (!accepted.empty()) legend.push_back({"accepted closure (" + std::to_string(accepted.size()) + ")", palette::kAccepted});
-    if (!rejected.empty()) legend.push_back({"rejected closure (" + std::to_string(rejected.size()) + ")", palette::kRejected});
+    if (!data.reference.empty()) legend.push_back({"reference (band)", palette::kReferenceBand});
+    if (accepted > 0) legend.push_back({"accepted closure (" + std::to_string(accepted) + ")", palette::kAccepted, false});
+    if (rejected > 0) legend.push_back({"rejected closure (" + std::to_string(rejected) + ")", palette::kRejected, false});
     if (oblique && grid_spacing > 0.0) {
         char text[48];
         std::snprintf(text, sizeof(text), "grid %g m", grid_spacing);

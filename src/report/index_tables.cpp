@@ -28,23 +28,35 @@ std::string ClosureStatus(const ClosureEntry& entry) {
     return "below threshold";
 }
 
+std::string ClosureEvidence(const ClosureEntry& entry) {
+    return entry.proximity ? std::string("proximity pass") : std::to_string(entry.closure.num_inliers) + " inliers";
+}
+
 std::vector<std::pair<std::string, std::string>> GlanceCounts(const ReportInput& input, const ReportPlan& plan) {
-    std::size_t reached = 0, verified = 0, accepted = 0;
+    std::size_t candidates = 0, refined = 0, verified = 0, accepted = 0, proximity_accepted = 0;
     for (const auto& entry : input.closures) {
-        reached += entry.reached_threshold || entry.accepted;
+        if (entry.proximity) {
+            proximity_accepted += entry.accepted;
+            continue;
+        }
+        ++candidates;
+        refined += entry.reached_threshold || entry.accepted;
         verified += entry.verified || entry.accepted;
         accepted += entry.accepted;
     }
-    const std::size_t n = input.closures.size();
     std::vector<std::pair<std::string, std::string>> rows{
-        {"closure candidates (>= 3 inliers)", Count(n)},
-        {"reached the acceptance threshold (verified in 3D)", Count(reached)},
-        {"passed 3D verification", Count(verified)},
-        {"accepted into the pose graph", Count(accepted)},
-        {"rejected", Count(n - accepted)}};
-    if (input.true_closures) rows.push_back({"true closures (against the reference)", std::to_string(*input.true_closures)});
-    if (input.false_closures) rows.push_back({"false closures (against the reference)", std::to_string(*input.false_closures)});
-    rows.push_back({"closure pages in this report", Count(plan.closure_pages.size()) + " of " + Count(n) +
+        {"detector: candidates (>= 3 inliers)", Count(candidates)},
+        {"detector: reached the acceptance threshold, registered in 3D", Count(refined)},
+        {"detector: passed 3D verification", Count(verified)},
+        {"detector: accepted into the pose graph", Count(accepted)}};
+    if (input.proximity_registered > 0) {
+        rows.push_back({"proximity pass: map pairs registered (from the corrected poses)", Count(input.proximity_registered)});
+        rows.push_back({"proximity pass: accepted into the pose graph", Count(proximity_accepted)});
+    }
+    if (input.true_closures && input.false_closures)
+        rows.push_back({"accepted closures against the reference: true / false",
+                        std::to_string(*input.true_closures) + " / " + std::to_string(*input.false_closures)});
+    rows.push_back({"closure pages in this report", Count(plan.closure_pages.size()) + " of " + Count(input.closures.size()) +
                                                         " (the rest: table below, `revisit inspect`)"});
     return rows;
 }
@@ -97,8 +109,9 @@ void AddCandidateTable(HtmlPage& page, const ReportInput& input, const ReportPla
         std::replace(css.begin(), css.end(), ' ', '-');
         rows.push_back("<tr class=\"status-" + css + "\">" + TextCell(std::to_string(i)) + Cell(MapRef(plan, c.query_id)) +
                        Cell(MapRef(plan, c.ref_id)) + TextCell(Scans(c.query_scans)) + TextCell(Scans(c.ref_scans)) +
-                       TextCell(Count(c.num_inliers)) + TextCell(Count(c.num_votes)) + TextCell(status) +
-                       TextCell(entry.reason) + TextCell(ErrorText(entry)) + Cell(page_cell) + "</tr>\n");
+                       TextCell(entry.proximity ? "-" : Count(c.num_inliers)) + TextCell(entry.proximity ? "-" : Count(c.num_votes)) +
+                       TextCell(status) + TextCell(entry.proximity ? "proximity pass; " + entry.reason : entry.reason) +
+                       TextCell(ErrorText(entry)) + Cell(page_cell) + "</tr>\n");
     }
     page.SortableTable({"#", "query map", "reference map", "query scans", "reference scans", "inliers", "votes", "status",
                         "why", "GT error [m]", "page"},

@@ -14,7 +14,11 @@ namespace revisit {
 /// failed" or "below threshold" (never verified).
 std::string ClosureStatus(const ClosureEntry& entry);
 
-/// Candidates, how many reached the threshold, were verified, accepted, rejected; true/false when known; pages.
+/// What a closure rests on, for labels: "44 inliers" (detector) or "proximity pass" (registered, no image matching).
+std::string ClosureEvidence(const ClosureEntry& entry);
+
+/// The counts per source, each number once: the detector's candidates, refined, verified and accepted; the
+/// proximity pass's registered and accepted; true/false when known; pages.
 std::vector<std::pair<std::string, std::string>> GlanceCounts(const ReportInput& input, const ReportPlan& plan);
 
 /// The accepted closures with a ground-truth error, worst first: all of them when at most 2 * `count`, else

@@ -2,6 +2,7 @@
 
 #include "render/density_pictures.hpp"
 #include "report/html_page.hpp"
+#include "report/index_tables.hpp"
 #include "report/svg_plot.hpp"
 
 #include <optional>
@@ -22,7 +23,7 @@ std::string ClosureList(const ReportInput& input, int map_id, const ReportPlan& 
         const int other = as_query ? c.ref_id : c.query_id;
         html += "<li>" + ClosureRef(input, plan, i) + ": " + EscapeXml(as_query ? "query, reference " : "reference of ") +
                 MapRef(plan, other) +
-                EscapeXml(", " + std::to_string(c.num_inliers) + " inliers, " + (entry.accepted ? "accepted" : "rejected")) +
+                EscapeXml(", " + ClosureEvidence(entry) + ", " + ClosureStatus(entry)) +
                 "</li>\n";
     }
     return html.empty() ? "<p>No closure candidate involves this map.</p>\n" : "<ul>\n" + html + "</ul>\n";

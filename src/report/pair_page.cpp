@@ -2,9 +2,10 @@
 
 #include "core/atomic_file.hpp"
 #include "render/map_pair_view.hpp"
+#include "render/png_encoding.hpp"
 #include "report/html_page.hpp"
+#include "report/index_tables.hpp"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
@@ -49,6 +50,24 @@ std::string Optional(const std::optional<double>& value, const std::string& unit
     return value ? FormatNumber(*value, decimals) + unit : "-";
 }
 
+/// What the alignment changed against the odometry, in words and numbers; says so when the two overlays must look
+/// alike (the change is below two density-image cells and a degree).
+std::string AlignmentSentence(const Eigen::Matrix4d& T_odometry, const Eigen::Matrix4d& T_after, double cell_m,
+                              const OverlayAgreement& at_odometry, const OverlayAgreement& after) {
+    const Eigen::Matrix4d delta = T_odometry.inverse() * T_after;
+    const double moved_m = std::hypot(delta(0, 3), delta(1, 3));
+    const double turned_deg = std::abs(std::atan2(delta(1, 0), delta(0, 0))) * 180.0 / M_PI;
+    std::string text = "The alignment moves the reference map " + FormatNumber(moved_m, 2) + " m and " +
+                       FormatNumber(turned_deg, 2) + " deg from the odometry pose. ";
+    if (moved_m < 2.0 * cell_m && turned_deg < 1.0)
+        text += "That is less than two density-image cells (" + FormatNumber(2.0 * cell_m, 2) +
+                " m): the odometry already laid the maps over each other, so the two overlays look alike. ";
+    const auto percent = [](const OverlayAgreement& a) { return FormatNumber(100.0 * a.Fraction(), 0) + "%"; };
+    text += "Occupied query cells with reference structure in the same cell: " + percent(at_odometry) +
+            " at the odometry pose, " + percent(after) + " after alignment.";
+    return text;
+}
+
 }  // namespace
 
 std::string ClosureStem(std::size_t index) {
@@ -66,7 +85,11 @@ std::string MapStem(int map_id) {
 void WritePng(const std::filesystem::path& path, const cv::Mat& image) {
     // Encoded in memory, then written all or nothing like every other file (core/atomic_file.hpp).
     std::vector<std::uint8_t> png;
-    if (!cv::imencode(".png", image, png)) throw std::runtime_error("report: cannot encode " + path.string());
+    try {
+        png = EncodePng(image);
+    } catch (const std::exception& e) {
+        throw std::runtime_error("report: cannot encode " + path.string() + ": " + e.what());
+    }
     WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
@@ -103,14 +126,18 @@ WrittenPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, b
         {"reference map", std::to_string(c.ref_id) + " (session " + std::to_string(c.ref_session) + ", scans " +
                               std::to_string(c.ref_scans.first) + "-" + std::to_string(c.ref_scans.last) + ")"}};
     if (detected) {
-        numbers.push_back({"status", std::string(entry.accepted ? "accepted" : "rejected") +
-                                         (entry.reason.empty() ? "" : ": " + entry.reason)});
-        numbers.push_back({"matches / inliers / votes", std::to_string(c.matches.size()) + " / " +
-                                                            std::to_string(c.num_inliers) + " / " + std::to_string(c.num_votes)});
-        numbers.push_back({"T_query_ref (detector)", PoseText(c.T_query_ref)});
-        if (entry.T_query_ref_refined) numbers.push_back({"T_query_ref (refined)", PoseText(*entry.T_query_ref_refined)});
-        numbers.push_back({"refinement fitness", Optional(entry.fitness, "")});
-        numbers.push_back({"refinement RMSE", Optional(entry.rmse, " m")});
+        numbers.push_back({"source", entry.proximity ? "proximity pass: registered because the corrected poses laid the maps "
+                                                       "over each other (no image matching)"
+                                                     : "density-image detector"});
+        numbers.push_back({"status", ClosureStatus(entry) + (entry.reason.empty() ? "" : " (" + entry.reason + ")")});
+        if (!entry.proximity) {
+            numbers.push_back({"matches / inliers / votes", std::to_string(c.matches.size()) + " / " +
+                                                                std::to_string(c.num_inliers) + " / " + std::to_string(c.num_votes)});
+            numbers.push_back({"T_query_ref (detector)", PoseText(c.T_query_ref)});
+        }
+        if (entry.T_query_ref_refined) numbers.push_back({"T_query_ref (registered in 3D)", PoseText(*entry.T_query_ref_refined)});
+        numbers.push_back({"registration overlap", Optional(entry.fitness, "")});
+        numbers.push_back({"registration RMS", Optional(entry.rmse, " m")});
         numbers.push_back({"ground-truth error (planar, yaw)", Optional(entry.gt_translation_error, " m") + ", " +
                                                                    Optional(entry.gt_rotation_error, " deg", 2)});
         if (entry.gt_true_positive) numbers.push_back({"ground truth", *entry.gt_true_positive ? "true closure" : "false closure"});
@@ -130,15 +157,21 @@ WrittenPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, b
     };
     if (query_density && ref_density) {
         page.Heading("Density images", 2);
-        emit("_matches", DrawDensityMatches(*query_density, *ref_density, c, config.density_pictures),
-             detected ? "ORB keypoints and matches (inliers green, outliers red)" : "density images and keypoints");
-        if (detected)
-            emit("_overlay", DrawDensityOverlay(*query_density, *ref_density, T_after, "after alignment", config.density_pictures),
-                 "overlay after alignment");
+        // The proximity pass matched no images: a matches picture would show nothing it used.
+        if (!detected || !entry.proximity)
+            emit("_matches", DrawDensityMatches(*query_density, *ref_density, c, config.density_pictures),
+                 detected ? "ORB keypoints and matches: inliers green, outliers faint red" : "density images and keypoints");
+        OverlayAgreement at_odometry, after;
         if (T_odometry)
             emit("_overlay_odometry",
-                 DrawDensityOverlay(*query_density, *ref_density, *T_odometry, "odometry pose", config.density_pictures),
+                 DrawDensityOverlay(*query_density, *ref_density, *T_odometry, "at the odometry pose (before)",
+                                    config.density_pictures, &at_odometry),
                  "overlay at the odometry pose (before)");
+        if (detected)
+            emit("_overlay", DrawDensityOverlay(*query_density, *ref_density, T_after, "after alignment", config.density_pictures, &after),
+                 "overlay after alignment");
+        if (detected && T_odometry)
+            page.Paragraph(AlignmentSentence(*T_odometry, T_after, query_density->resolution, at_odometry, after));
     }
     if (query_map && ref_map) {
         page.Heading("Local maps in 3D", 2);

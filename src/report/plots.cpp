@@ -15,7 +15,11 @@ std::string PrCurvesSvg(const std::vector<PrCurve>& curves) {
     spec.x_range = {0.0, 1.0};
     spec.y_range = {0.0, 1.02};
     for (std::size_t i = 0; i < curves.size(); ++i) {
-        PlotSeries series{curves[i].method, {}, {}, SeriesColor(i)};
+        // The max-F1 value goes into the legend, not beside its dot: dots of several methods lie close together.
+        const PrCurvePoint best = MaxF1(curves[i]);
+        char label[96];
+        std::snprintf(label, sizeof(label), " (max F1 %.3f)", best.F1());
+        PlotSeries series{curves[i].method + label, {}, {}, SeriesColor(i)};
         auto points = curves[i].points;
         std::stable_sort(points.begin(), points.end(), [](const PrCurvePoint& a, const PrCurvePoint& b) { return a.recall < b.recall; });
         for (const auto& p : points) {
@@ -23,10 +27,7 @@ std::string PrCurvesSvg(const std::vector<PrCurve>& curves) {
             series.y.push_back(p.precision);
         }
         spec.series.push_back(std::move(series));
-        const PrCurvePoint best = MaxF1(curves[i]);
-        char label[64];
-        std::snprintf(label, sizeof(label), "F1 %.3f", best.F1());
-        spec.markers.push_back({label, best.recall, best.precision, SeriesColor(i)});
+        spec.markers.push_back({"", best.recall, best.precision, SeriesColor(i)});
     }
     return LinePlotSvg(spec);
 }

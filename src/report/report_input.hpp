@@ -28,10 +28,13 @@ struct StageTiming {
 /// One detected closure and what became of it.
 struct ClosureEntry {
     Closure closure;
+    /// Registered by the proximity pass (the corrected poses laid the two maps over each other), not detected:
+    /// no image matches, no votes; its evidence is the registration's overlap and RMS.
+    bool proximity = false;
     bool accepted = false;                   ///< in the final pose graph
     bool reached_threshold = false;          ///< reached the acceptance threshold (detector.min_inliers): verified in 3D
     bool verified = false;                   ///< passed 3D verification (may still be rejected by the pose graph)
-    std::string reason;                      ///< why accepted or rejected (refinement / pose-graph gate)
+    std::string reason;                      ///< why rejected, or the graph weight when accepted (no status word)
     std::optional<double> fitness;           ///< refinement fitness (e.g. inlier ratio of the ICP) [0..1]
     std::optional<double> rmse;              ///< refinement residual [m]
     std::optional<Eigen::Matrix4d> T_query_ref_refined;  ///< after refinement, when refined
@@ -87,7 +90,11 @@ struct ReportInput {
     std::vector<std::size_t> odometry_fallbacks;  ///< scans whose odometry pose is only a prediction
     std::vector<std::string> setting_updates;     ///< settings that followed the data mid-run, one line each
 
-    std::vector<ClosureEntry> closures;
+    std::vector<ClosureEntry> closures;  ///< the detector's candidates and the proximity pass's accepted closures
+    std::size_t proximity_registered = 0;  ///< map pairs the proximity pass registered (accepted or not)
+    /// The trajectory is the input poses (`--poses dataset`), and the reference is those same poses: APE
+    /// "before" is zero by construction.
+    bool reference_is_input = false;
     std::vector<int> map_ids;  ///< the run's local maps
     std::vector<ScanRange> map_scans;  ///< scan range of each map in map_ids (same order), or empty when unknown
     /// Closures the evaluation counts as true / false against the reference (metrics.json), when evaluated.

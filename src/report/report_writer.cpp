@@ -39,20 +39,20 @@ std::vector<Eigen::Vector3d> Positions(const TimedTrajectory& trajectory) {
     return positions;
 }
 
-/// Closure lines (accepted, and rejected after verification) join the first scans of the two maps (their map frames) on the odometry trajectory: there the
-/// drift the closure corrects shows as the line's length (on the corrected trajectory both ends coincide).
+/// Closures are drawn where the run came back: the middle scan of the query (revisiting) map on the corrected
+/// trajectory, where the two maps coincide once corrected. Candidates below the inlier gate are left out.
 OverviewData MakeOverviewData(const ReportInput& input) {
     OverviewData data;
     if (input.load_global_map) data.map_points = input.load_global_map();
     data.odometry = Positions(input.odometry);
     data.corrected = Positions(input.corrected);
     data.reference = Positions(input.reference);
-    const auto& along = data.odometry.empty() ? data.corrected : data.odometry;
+    const auto& along = data.corrected.empty() ? data.odometry : data.corrected;
     for (const auto& entry : input.closures) {
         // Candidates below the inlier gate were never verified: hundreds of them would hide the map.
         if (!entry.accepted && !entry.T_query_ref_refined) continue;
-        const auto q = entry.closure.query_scans.first, r = entry.closure.ref_scans.first;
-        if (q < along.size() && r < along.size()) data.closures.push_back({along[q], along[r], entry.accepted});
+        const auto q = (entry.closure.query_scans.first + entry.closure.query_scans.last) / 2;
+        if (q < along.size()) data.closures.push_back({along[q], entry.accepted});
     }
     return data;
 }
@@ -92,7 +92,11 @@ struct PageTask {
 
 }  // namespace
 
-ReportConfig::ReportConfig() : pair(MapPairRenderConfig()) {}
+ReportConfig::ReportConfig() : pair(MapPairRenderConfig()) {
+    // Rendered at the size the index shows them: a larger frame would only be scaled down by the browser.
+    overview.width = 1000;
+    overview.height = 750;
+}
 
 std::filesystem::path WriteClosurePage(const ReportInput& input, std::size_t closure_index,
                                        const std::filesystem::path& report_dir, const ReportConfig& config) {
@@ -187,18 +191,22 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
                                               std::tuple{OverviewView::kOblique, "overview_oblique.png", "oblique"}}) {
         WritePng(report_dir / name, RenderOverview(overview, view, config.overview));
         ++stats.images;
-        index.Figure(name, std::string("overview, ") + caption, name, 640);
+        index.Figure(name, std::string("overview, ") + caption, name);
     }
     // The corrected map alone, one pixel per cell: single or doubled walls show here.
     WritePng(report_dir / "map_top.png", RenderMapTopView(overview.map_points));
     ++stats.images;
-    index.Figure("map_top.png", "corrected map, top view (every point of the global map at the corrected poses)", "map_top.png", 640);
+    index.Figure("map_top.png", "corrected map, top view (every point of the global map at the corrected poses)", "map_top.png");
 
     index.Heading("Accepted closures by ground-truth error", 2, "errors");
     AddErrorRanking(index, input, plan, 5);
 
     index.Heading("Metrics", 2, "metrics");
     if (!input.evaluation_scope.empty()) index.Paragraph(input.evaluation_scope);
+    if (input.reference_is_input)
+        index.Paragraph("reference = input poses: the run used the dataset's own poses (--poses dataset), which are also "
+                        "its reference. APE before is zero by construction; APE after is how far the closures moved "
+                        "the trajectory from the input, not an error against an independent reference.");
     if (!input.metrics.rows.empty()) index.Table(input.metrics.header, input.metrics.rows);
     if (!input.pr_curves.empty()) {
         WriteText(report_dir / "precision_recall.svg", PrCurvesSvg(input.pr_curves));
@@ -231,8 +239,8 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
         const std::size_t i = tasks[t].closure;
         const auto& entry = input.closures[i];
         const std::string label = "#" + std::to_string(i) + ": map " + std::to_string(entry.closure.query_id) + " to " +
-                                  std::to_string(entry.closure.ref_id) + ", " + std::to_string(entry.closure.num_inliers) +
-                                  " inliers, " + ClosureStatus(entry);
+                                  std::to_string(entry.closure.ref_id) + ", " + ClosureEvidence(entry) + ", " +
+                                  ClosureStatus(entry);
         thumbs += ThumbnailFigure(ClosureStem(i) + ".html", written[t].thumbnail, label, entry.accepted ? "accepted" : "rejected");
     }
     index.Raw(thumbs + "</div>\n");

@@ -12,7 +12,7 @@
 namespace revisit {
 
 struct ReportConfig {
-    RenderConfig overview;                 ///< overview pictures (1280 x 960)
+    RenderConfig overview;                 ///< overview pictures (ReportConfig(): 1000 x 750, shown at that size)
     RenderConfig pair;                     ///< per-closure 3D views; MapPairRenderConfig() by default
     DensityPictureConfig density_pictures;
     DensityImageConfig density;            ///< when density images are computed from maps (no load_density_image)

@@ -8,6 +8,11 @@ void AddRevisitSection(HtmlPage& index, const ReportInput& input) {
     index.Heading("Were the revisits found?", 2, "revisits");
     if (!input.evaluation_scope.empty()) index.Paragraph(input.evaluation_scope);
     if (!findings.lines.empty()) index.List(findings.lines);
+    index.Paragraph("Recall and revisit coverage count different things. Recall (Metrics) counts scan pairs: of the pairs "
+                    "of scans the reference says overlap, the share an accepted closure predicts, and one closure between "
+                    "two local maps predicts only their scans within tau_d of each other. Revisit coverage counts places: "
+                    "of the scans that come back to where the run passed before, the share in a map joined to that place "
+                    "by a true closure. One true closure per revisit covers the revisit whole while recall stays low.");
     if (!findings.funnel.rows.empty()) {
         index.Paragraph("Recall as a funnel: of the map pairs that the reference poses say overlap, how many each way of "
                         "finding closures carried to each stage (the proximity pass registers the pairs the corrected poses "

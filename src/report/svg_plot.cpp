@@ -124,11 +124,13 @@ std::string LinePlotSvg(const LinePlotSpec& spec) {
     svg << "</g>\n";
     for (const auto& m : spec.markers)
         svg << "<circle cx=\"" << Num(X(m.x)) << "\" cy=\"" << Num(Y(m.y)) << "\" r=\"5\" fill=\"" << CssColor(m.color)
-            << "\" stroke=\"#000\"/><text x=\"" << Num(X(m.x) + 8) << "\" y=\"" << Num(Y(m.y) - 8) << "\">"
-            << EscapeXml(m.label) << "</text>\n";
+            << "\" stroke=\"#000\"/>"
+            << (m.label.empty() ? std::string()
+                                : "<text x=\"" + Num(X(m.x) + 8) + "\" y=\"" + Num(Y(m.y) - 8) + "\">" + EscapeXml(m.label) + "</text>")
+            << "\n";
     // Legend, top right inside the plot.
     for (std::size_t i = 0; i < spec.series.size(); ++i) {
-        const double y = kTop + 14 + 18.0 * i, x = kLeft + plot_w - 170;
+        const double y = kTop + 14 + 18.0 * i, x = kLeft + plot_w - 250;
         svg << "<line x1=\"" << Num(x) << "\" y1=\"" << Num(y) << "\" x2=\"" << Num(x + 24) << "\" y2=\"" << Num(y)
             << "\" stroke-width=\"3\" stroke=\"" << CssColor(spec.series[i].color) << '"'
             << (spec.series[i].dashed ? " stroke-dasharray=\"6 4\"" : "") << "/><text x=\"" << Num(x + 30) << "\" y=\""

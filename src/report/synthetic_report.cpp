@@ -161,6 +161,28 @@ ReportInput MakeSyntheticRun(const SyntheticRunConfig& config) {
         entry.gt_rotation_error = 180.0 * unit(weak_rng);
         input.closures.push_back(std::move(entry));
     }
+    for (int k = 0; k < config.proximity_closures; ++k) {
+        ClosureEntry entry;
+        Closure& c = entry.closure;
+        c.ref_id = config.maps_per_lap - 1 - k % config.maps_per_lap;
+        c.query_id = c.ref_id + config.maps_per_lap;
+        c.query_scans = {std::size_t(c.query_id) * config.scans_per_map, std::size_t(c.query_id + 1) * config.scans_per_map - 1};
+        c.ref_scans = {std::size_t(c.ref_id) * config.scans_per_map, std::size_t(c.ref_id + 1) * config.scans_per_map - 1};
+        const Eigen::Isometry3d T_true =
+            world->T_world_true[c.query_scans.first].inverse() * world->T_world_true[c.ref_scans.first];
+        c.T_query_ref = T_true.matrix();
+        entry.proximity = true;
+        entry.accepted = entry.reached_threshold = entry.verified = true;
+        entry.reason = "graph weight 1.00";
+        entry.fitness = 0.7;
+        entry.rmse = 0.1;
+        entry.T_query_ref_refined = T_true.matrix();
+        entry.gt_translation_error = 0.05;
+        entry.gt_rotation_error = 0.1;
+        entry.gt_true_positive = true;
+        input.closures.push_back(std::move(entry));
+    }
+    input.proximity_registered = std::size_t(config.proximity_closures);
     int true_closures = 0, false_closures = 0;
     for (const auto& entry : input.closures)
         if (entry.accepted) (entry.gt_true_positive.value_or(false) ? true_closures : false_closures) += 1;

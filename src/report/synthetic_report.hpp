@@ -18,6 +18,9 @@ struct SyntheticRunConfig {
     /// Extra candidates below the acceptance threshold (3-9 inliers between random maps, wrong poses), as a long
     /// real sequence produces by the thousand.
     int weak_candidates = 0;
+    /// Accepted closures of the proximity pass (registered at the true pose, no image matches), after the others,
+    /// between maps of the second lap and the last maps of the first.
+    int proximity_closures = 0;
     std::uint32_t seed = 1;
 };
 

@@ -52,6 +52,9 @@ TEST(RunSummary, ApeChangesBetweenValuesNearZeroAreUnchangedNotThousandsOfPercen
     EXPECT_EQ(DescribeApeChange(0.001, 0.5), "0.00 m -> 0.50 m (+0.50 m: the closures made it worse)");
     EXPECT_EQ(DescribeApeChange(0.004, 0.0), "0.00 m -> 0.00 m (unchanged)");
     EXPECT_EQ(DescribeApeChange(0.5, 0.05), "0.50 m -> 0.05 m (90% lower)");
+    // The reference is the input poses: the change is how far the closures moved them, not "worse".
+    EXPECT_EQ(DescribeApeChange(0.0, 0.08, true),
+              "0.00 m -> 0.08 m (reference = input poses: the closures moved the trajectory this far from them)");
 }
 
 TEST(RunSummary, WallTimeIncludesEvaluationAndReportEachShown) {

@@ -65,13 +65,12 @@ int CountNear(const cv::Mat& bgr, Rgb color, int tolerance) {
     return cv::countNonZero(mask);
 }
 
-/// Fraction of lit query pixels that have a lit reference pixel on them in an overlay picture.
-double OverlayAgreement(const cv::Mat& overlay) {
-    cv::Mat bgr[3];
-    cv::split(overlay, bgr);
-    const cv::Mat query = (bgr[2] >= 100) & (bgr[2] <= 254);
-    const cv::Mat both = query & (bgr[1] >= 100) & (bgr[0] >= 100) & (bgr[1] <= 254);
-    return double(cv::countNonZero(both)) / std::max(1, cv::countNonZero(query));
+/// Dark (both maps) pixels among the query's (red or dark) in an overlay picture, below its header.
+double DarkShare(const cv::Mat& overlay) {
+    cv::Mat dark, red;
+    cv::inRange(overlay, cv::Scalar(0, 0, 0), cv::Scalar(60, 60, 60), dark);
+    cv::inRange(overlay, cv::Scalar(0, 0, 150), cv::Scalar(170, 170, 255), red);
+    return double(cv::countNonZero(dark)) / std::max(1, cv::countNonZero(dark) + cv::countNonZero(red));
 }
 
 TEST(DensityPictures, RealKittiMatchesShowInliersInGreenAndOutliersInRed) {
@@ -80,13 +79,18 @@ TEST(DensityPictures, RealKittiMatchesShowInliersInGreenAndOutliersInRed) {
     ASSERT_TRUE(k.found) << "the detector found no closure between frames 0-7 and 8-15";
     const cv::Mat picture = DrawDensityMatches(k.query_features.density, k.ref_features.density, k.closure);
     ASSERT_EQ(picture.type(), CV_8UC3);
-    // Both panels side by side: wider than the two images.
-    EXPECT_GT(picture.cols, k.query_features.density.image.cols + k.ref_features.density.image.cols);
+    // Both panels side by side at one scale: the larger one is panel_side long, the other beside it.
+    EXPECT_GE(picture.cols, DensityPictureConfig{}.panel_side + 28);
     int outliers = 0;
     for (const auto flag : k.closure.inlier_mask) outliers += flag == 0;
     EXPECT_GT(CountNear(picture, palette::kInlier, 40), 20 * k.closure.num_inliers);  // each line is tens of pixels
+    // Outliers are faint by default; drawn at full opacity they are red lines.
+    EXPECT_LT(CountNear(picture, palette::kOutlier, 40), 200);  // the legend sample
     if (outliers > 0) {
-        EXPECT_GT(CountNear(picture, palette::kOutlier, 40), 10 * outliers);
+        DensityPictureConfig opaque;
+        opaque.outlier_opacity = 1.0;
+        const cv::Mat full = DrawDensityMatches(k.query_features.density, k.ref_features.density, k.closure, opaque);
+        EXPECT_GT(CountNear(full, palette::kOutlier, 40), 10 * outliers);
     }
 
     // Dropping the inlier flags turns every line red: the colours follow the mask, not the drawing order.
@@ -102,13 +106,14 @@ TEST(DensityPictures, RealKittiOverlayAgreesAtTheClosurePoseNotAtIdentity) {
     ASSERT_TRUE(k.found);
     const auto& q = k.query_features.density;
     const auto& r = k.ref_features.density;
-    const cv::Mat aligned = DrawDensityOverlay(q, r, k.closure.T_query_ref, "after");
-    const cv::Mat identity = DrawDensityOverlay(q, r, Eigen::Matrix4d::Identity(), "identity");
+    OverlayAgreement at_pose, at_identity;
+    const cv::Mat aligned = DrawDensityOverlay(q, r, k.closure.T_query_ref, "after", {}, &at_pose);
+    const cv::Mat identity = DrawDensityOverlay(q, r, Eigen::Matrix4d::Identity(), "identity", {}, &at_identity);
     // The maps are ~6 m apart along the road: at identity the structure does not coincide.
-    const double agreement_aligned = OverlayAgreement(aligned.rowRange(130, aligned.rows));
-    const double agreement_identity = OverlayAgreement(identity.rowRange(130, identity.rows));
-    EXPECT_GT(agreement_aligned, agreement_identity + 0.15) << agreement_aligned << " vs " << agreement_identity;
-    EXPECT_GT(agreement_aligned, 0.4);
+    EXPECT_GT(at_pose.Fraction(), at_identity.Fraction() + 0.15) << at_pose.Fraction() << " vs " << at_identity.Fraction();
+    EXPECT_GT(at_pose.Fraction(), 0.4);
+    // The picture shows what the numbers count: more dark (shared) cells at the closure pose.
+    EXPECT_GT(DarkShare(aligned.rowRange(100, aligned.rows - 70)), DarkShare(identity.rowRange(100, identity.rows - 70)));
 }
 
 TEST(MapPairView, RealKittiMapsAppearInTheirTwoColours) {

@@ -41,8 +41,8 @@ OverviewData LoopScene(bool with_trajectories) {
                                              float(k) * 0.2f);
     }
     if (with_trajectories) {
-        data.closures.push_back({data.corrected[399], data.corrected[0], true});
-        data.closures.push_back({data.corrected[200], data.corrected[10], false});
+        data.closures.push_back({data.corrected[399], true});
+        data.closures.push_back({data.corrected[200], false});
     }
     return data;
 }
@@ -57,8 +57,8 @@ TEST(RenderOverview, DrawsBothTrajectoriesInTheirColoursOverTheMap) {
     ASSERT_EQ(with.size(), cv::Size(640, 480));
     // A 2*pi*60 m loop at ~2 px/m and 3 px thickness covers well over 1000 pixels per trajectory.
     EXPECT_GT(CountColor(with, palette::kCorrected), 1000);
-    EXPECT_GT(CountColor(with, palette::kOdometry), 1000);
-    EXPECT_GT(CountColor(with, palette::kAccepted), 10);
+    EXPECT_GT(CountColor(with, palette::kOdometry), 1000);  // dashed, on top of the corrected line
+    EXPECT_GT(CountColor(with, palette::kAccepted), 10);     // the closure's dot
     // Without trajectories the map colours alone never match the trajectory colours.
     EXPECT_LT(CountColor(without, palette::kCorrected), 50);
     EXPECT_LT(CountColor(without, palette::kOdometry), 50);
