@@ -15,6 +15,7 @@ struct SimulateOptions {
     std::string out;
     std::uint64_t seed = 0;
     std::size_t max_scans = 0;
+    double length = 0.0;  ///< [m] 0: the preset's route
     std::string trajectory;
     int session = 0;
     std::optional<double> scale_bias;     ///< odometry prior: relative error of travelled distance
@@ -33,6 +34,10 @@ int RunSimulate(const SimulateOptions& options) {
     SimConfig config = SimPreset(options.preset);
     if (options.seed != 0) config.seed = options.seed;
     if (options.max_scans != 0) config.max_scans = options.max_scans;
+    if (options.length > 0.0) {
+        if (!options.trajectory.empty()) throw std::runtime_error("simulate: --length and --trajectory exclude each other");
+        config = WithRouteLength(config, options.length);
+    }
     config.session = options.session;
     if (options.scale_bias) config.odometry.speed_scale_bias = *options.scale_bias;
     if (options.yaw_bias_deg) config.odometry.yaw_rate_bias = *options.yaw_bias_deg * M_PI / 180.0;
@@ -70,11 +75,16 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
         "  revisit simulate --preset city-64 --trajectory ../shared/data/kitti_gt_poses/00.txt --out sim00\n"
         "  revisit simulate --preset demo --session 1 --out data/demo-s1   # same city, another route\n"
         "  revisit simulate --preset demo --out drift.rawlog --odometry-scale-bias 0.05 --odometry-yaw-bias 0.5\n"
+        "  revisit simulate --preset highway-64 --length 25000 --out highway-25km.rawlog   # ~10,000 scans\n"
         "  revisit simulate --list-presets");
     cmd->add_option("--preset", options->preset, "world + sensor preset (see --list-presets)")->capture_default_str();
     cmd->add_option("--out", options->out, "output KITTI folder or .rawlog[.gz] file");
     cmd->add_option("--seed", options->seed, "random seed (default: the preset's)");
     cmd->add_option("--scans", options->max_scans, "stop after this many scans (default: the whole route)");
+    cmd->add_option("--length", options->length,
+                    "route length [m] of a city or highway preset (default: the preset's); the world grows with it, "
+                    "e.g. --preset highway-64 --length 25000 for the paper's highway scale")
+        ->check(CLI::Range(100.0, 500000.0));
     cmd->add_option("--trajectory", options->trajectory,
                     "drive this KITTI/TUM trajectory through a street world built along it (the preset gives the "
                     "sensor and densities)")

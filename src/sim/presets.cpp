@@ -1,6 +1,8 @@
 #include "sim/presets.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/error.hpp"
 
@@ -147,6 +149,38 @@ SimConfig SimPreset(const std::string& name) {
     std::string known;
     for (const auto& n : SimPresetNames()) known += (known.empty() ? "" : ", ") + n;
     throw ConfigError("sim.preset: unknown preset '" + name + "' (known: " + known + ")");
+}
+
+SimConfig WithRouteLength(SimConfig config, double length) {
+    if (!(length >= 100.0 && length <= 500000.0))
+        throw ConfigError("sim: route length " + std::to_string(length) + " m is outside [100, 500000] m");
+    if (config.world != WorldKind::kCity && config.world != WorldKind::kHighway)
+        throw ConfigError("sim: a route length applies to the city and highway presets, not to '" + config.name + "'");
+    const double ratio = length / config.route.length;
+    config.route.length = length;
+    // A city's revisits as often per kilometre as the preset plans them. A highway keeps its number:
+    // its graph (a ring, two cross roads) has the same few streets at any size, and a revisit drives a
+    // street not revisited before, so the longer route spaces the same revisits farther apart.
+    if (config.world == WorldKind::kCity)
+        config.route.revisits = std::max(1, static_cast<int>(std::lround(config.route.revisits * ratio)));
+    if (ratio > 1.0) {
+        // The area grows with the route (a grid's street length goes with its area), so the drive
+        // keeps exploring instead of circling the preset's few blocks.
+        const double grow = std::sqrt(ratio);
+        config.route.explore_radius *= grow;
+        config.route.min_revisit_gap *= grow;
+        if (config.world == WorldKind::kCity) {
+            config.city.blocks_x = static_cast<int>(std::ceil(config.city.blocks_x * grow));
+            config.city.blocks_y = static_cast<int>(std::ceil(config.city.blocks_y * grow));
+            config.city.moving_cars = static_cast<int>(std::lround(config.city.moving_cars * ratio));
+        } else {
+            // A ring road and two cross roads hold about 10 radii of road; the route drives most of it twice.
+            config.highway.ring_radius = std::max(config.highway.ring_radius, length / 20.0);
+            config.route.explore_radius = std::max(config.route.explore_radius, 3.0 * config.highway.ring_radius);
+            config.highway.moving_cars = static_cast<int>(std::lround(config.highway.moving_cars * grow));
+        }
+    }
+    return config;
 }
 
 }  // namespace revisit

@@ -5,6 +5,9 @@
 #include "sim/presets.hpp"
 #include "sim/ray_caster.hpp"
 
+#include <exception>
+#include <string>
+
 namespace revisit {
 namespace {
 
@@ -75,9 +78,30 @@ std::unique_ptr<Reader> OpenSimulation(const SimConfig& config, const std::strin
 }
 
 SimConfig SimConfigFromSpec(const std::string& spec) {
-    const std::string preset = spec.rfind(kScheme, 0) == 0 ? spec.substr(4) : spec;
+    std::string preset = spec.rfind(kScheme, 0) == 0 ? spec.substr(4) : spec;
+    std::string length_text;
+    if (const auto comma = preset.find(','); comma != std::string::npos) {
+        const std::string option = preset.substr(comma + 1);
+        preset.resize(comma);
+        if (option.rfind("length=", 0) != 0)
+            throw DatasetError(spec, "unknown simulator option '" + option + "' (known: length=METRES)");
+        length_text = option.substr(7);
+    }
     try {
-        return SimPreset(preset);
+        SimConfig config = SimPreset(preset);
+        if (!length_text.empty()) {
+            std::size_t used = 0;
+            double length = 0.0;
+            try {
+                length = std::stod(length_text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used == 0 || used != length_text.size())
+                throw ConfigError("length '" + length_text + "' is not a number of metres");
+            config = WithRouteLength(config, length);
+        }
+        return config;
     } catch (const ConfigError& error) {
         throw DatasetError(spec, error.what());
     }

@@ -14,7 +14,8 @@ namespace revisit {
 /// `name` is what Info().path says (e.g. "sim:demo").
 std::unique_ptr<Reader> OpenSimulation(const SimConfig& config, const std::string& name);
 
-/// "sim:PRESET" -> the preset's configuration; throws DatasetError naming the spec for an unknown preset.
+/// "sim:PRESET" or "sim:PRESET,length=METRES" (WithRouteLength) -> the configuration; throws DatasetError
+/// naming the spec for an unknown preset or option.
 SimConfig SimConfigFromSpec(const std::string& spec);
 
 /// Lets OpenDataset read "sim:PRESET" (io/reader.hpp: RegisterDatasetScheme). Call once, before any

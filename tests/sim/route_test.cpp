@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "sim/presets.hpp"
@@ -150,6 +151,37 @@ TEST(SimPreset, EveryNameBuildsAPlanWithScans) {
         }
     }
     EXPECT_THROW(SimPreset("no-such-preset"), ConfigError);
+}
+
+TEST(SimPreset, LongDrivesExploreAndComeBackAfterLongStretches) {
+    // The paper's highway scale: 25 km. The route is planned only (no rays), so this is cheap.
+    const SimPlan plan = PlanSimulation(WithRouteLength(SimPreset("highway-64"), 25000.0));
+    const double length = PathLength(plan.trajectory.poses);
+    EXPECT_GT(length, 25000.0);
+    EXPECT_LT(length, 30000.0);
+    EXPECT_GT(plan.trajectory.size(), 9000u);  // 25 m/s at 10 Hz
+    const auto travelled = CumulativeDistance(plan.trajectory.poses);
+    int opposite = 0, after_long_stretch = 0;
+    for (const auto& r : plan.revisits) {
+        opposite += r.opposite ? 1 : 0;
+        after_long_stretch += travelled[r.first] - travelled[r.reference] > 2000.0 ? 1 : 0;
+    }
+    EXPECT_GE(opposite, 1);
+    EXPECT_GE(after_long_stretch, 3);
+    // Most of the drive is new ground: the world grew with the route.
+    std::size_t far_from_earlier = 0;
+    for (std::size_t k = 0; k < plan.trajectory.size(); k += 50) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j + 300 < k; j += 5)
+            nearest = std::min(nearest, (plan.trajectory.poses[k].translation() - plan.trajectory.poses[j].translation()).norm());
+        far_from_earlier += nearest > 30.0 ? 1 : 0;
+    }
+    EXPECT_GT(far_from_earlier, plan.trajectory.size() / 50 / 3);
+    // A city stretches the same way; indoor floors and lengths out of range are refused.
+    const SimConfig city = WithRouteLength(SimPreset("city-16"), 10000.0);
+    EXPECT_GT(city.city.blocks_x, SimPreset("city-16").city.blocks_x);
+    EXPECT_THROW(WithRouteLength(SimPreset("indoor-2d-180"), 1000.0), ConfigError);
+    EXPECT_THROW(WithRouteLength(SimPreset("demo"), 10.0), ConfigError);
 }
 
 }  // namespace
