@@ -12,7 +12,8 @@ TIMED_KEYS = {"wall_seconds", "peak_rss_kb"}
 
 def without_times(value):
     if isinstance(value, dict):
-        return {k: without_times(v) for k, v in value.items() if k not in TIMED_KEYS}
+        # run.json's `files` table holds each file's size and checksum, the timed files' too.
+        return {k: without_times(v) for k, v in value.items() if k not in TIMED_KEYS and k not in TIMED_FILES}
     if isinstance(value, list):
         return [without_times(v) for v in value]
     return value
