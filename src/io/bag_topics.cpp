@@ -98,7 +98,8 @@ std::vector<TopicSummary> SummarizeTopics(const std::vector<BagTopic>& topics, c
         s.type = topic.type;
         s.messages = topic.count;
         if (topic.count > 1 && topic.last_ns > topic.first_ns) {
-            s.rate_hz = double(topic.count - 1) / (double(topic.last_ns - topic.first_ns) * 1e-9);
+            // The span in double: stamps read from a file can be any int64, and their difference overflow.
+            s.rate_hz = double(topic.count - 1) / ((double(topic.last_ns) - double(topic.first_ns)) * 1e-9);
         }
         s.role = i == choice.points      ? "points"
                  : i == choice.odometry  ? "odometry"

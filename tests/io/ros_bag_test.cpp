@@ -5,9 +5,11 @@
 
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 #include "read_all.hpp"
 #include "core/error.hpp"
+#include "io/bag_topics.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
 #include "test_data.hpp"
@@ -109,6 +111,15 @@ TEST(RosBag, InfoListsEveryTopicWithItsRole) {
     EXPECT_EQ(by_name["/ground_truth"].role, "reference");
     EXPECT_EQ(by_name["/tf_static"].role, "static transforms");
     EXPECT_EQ(by_name["/tf_static"].messages, 1u);
+}
+
+TEST(RosBag, RatesOfAnyStampsStayFiniteAndPositive) {
+    // Stamps from a damaged file at the ends of int64 (found by fuzz_mcap): their difference overflows.
+    BagTopic topic{"/points", "sensor_msgs/msg/PointCloud2", RosWire::kCdr, 3, std::numeric_limits<std::int64_t>::min() + 1, 2};
+    const auto summary = SummarizeTopics({topic}, TopicChoice{});
+    ASSERT_EQ(summary.size(), 1u);
+    EXPECT_GT(summary[0].rate_hz, 0.0);
+    EXPECT_LT(summary[0].rate_hz, 1e-9);  // 2 intervals over ~292 years
 }
 
 TEST(RosBag, NamedTopicsAndNone) {
