@@ -190,9 +190,7 @@ void ScanContextCases(const CaseContext& c) {
         Eigen::MatrixXf bins = Eigen::MatrixXf::Constant(config.num_rings, config.num_sectors, 1.0f);
         for (auto& d : descriptors) {
             for (Eigen::Index k = 0; k < bins.size(); ++k) bins(k) = std::max(0.0f, bins(k) + step(rng));
-            d.bins = bins;
-            d.ring_key = bins.rowwise().mean();
-            d.sector_key = bins.colwise().mean().transpose();
+            d = DescriptorOfBins(bins);
         }
         std::size_t candidates = 0;
         Measurement measured = Measure("scan_context/search", "ms/scan", FigureKind::kMsPerItem, Heavy(c.scale), [&] {

@@ -90,7 +90,10 @@ ScanContextDescriptor MakeScanContext(const std::vector<Eigen::Vector3f>& points
         const int sector = BinOf(azimuth_deg, 360.0f, config.num_sectors) - 1;
         bins(ring, sector) = std::max(bins(ring, sector), p.z() + sensor_height);
     }
-    bins = (bins.array() == kNoPoint).select(0.0f, bins);
+    return DescriptorOfBins((bins.array() == kNoPoint).select(0.0f, bins));
+}
+
+ScanContextDescriptor DescriptorOfBins(Eigen::MatrixXf bins) {
     ScanContextDescriptor descriptor;
     descriptor.ring_key = bins.rowwise().mean();
     descriptor.sector_key = bins.colwise().mean().transpose();

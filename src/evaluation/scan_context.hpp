@@ -27,6 +27,9 @@ struct ScanContextDescriptor {
     Eigen::VectorXf sector_key;///< mean of each sector (column): for the coarse yaw shift
 };
 
+/// The descriptor of given bins: its ring and sector keys are their row and column means.
+ScanContextDescriptor DescriptorOfBins(Eigen::MatrixXf bins);
+
 /// Bin (ring, sector) of a point at radius r and azimuth theta in [0, 360) degrees:
 /// ring = clamp(ceil(r / max_radius * rings), 1, rings) - 1, the same for sectors (SCManager's rule).
 ScanContextDescriptor MakeScanContext(const std::vector<Eigen::Vector3f>& points_in_sensor,
