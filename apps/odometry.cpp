@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "core/owned_files.hpp"
 #include "io/output_folder.hpp"
 #include "io/reader.hpp"
 #include "io/trajectory_io.hpp"
@@ -28,6 +29,8 @@ int RunOdometry(const OdometryOptions& o) {
     const ReaderOptions reader_options = MakeReaderOptions(config.input);
     auto reader = OpenDataset(o.dataset, reader_options);
     PrepareOutputFolder(o.out, o.force);
+    // An earlier odometry's poses must not outlive a run of this one that fails or is stopped early.
+    for (const char* name : {"poses_kitti.txt", "poses_tum.txt"}) RemoveOwnFile(std::filesystem::path(o.out) / name);
     OdometryStages stages(config);
     const LidarOdometry& odometry = stages.odometry();
     Trajectory trajectory;

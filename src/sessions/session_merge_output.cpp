@@ -7,6 +7,7 @@
 #include <iomanip>
 
 #include "core/atomic_file.hpp"
+#include "core/owned_files.hpp"
 #include "io/cloud_files.hpp"
 #include "io/output_folder.hpp"
 #include "io/trajectory_io.hpp"
@@ -26,6 +27,18 @@ std::string SessionFile(std::size_t session, const char* suffix) {
     char name[64];
     std::snprintf(name, sizeof(name), "session_%02zu_poses_%s.txt", session, suffix);
     return name;
+}
+
+/// A file name a merge writes (WriteMerge's names): an earlier merge's files of these names go
+/// first, so a session that is no longer connected (or no longer there) leaves no trajectory behind.
+bool IsMergeResultName(const std::string& name) {
+    static const char* const kNames[] = {"sessions.json", "cross_closures.csv", "sessions.svg", "map_joint.ply", "index.html"};
+    for (const char* n : kNames) {
+        if (name == n) return true;
+    }
+    unsigned session = 0;
+    if (std::sscanf(name.c_str(), "session_%u_", &session) != 1) return false;
+    return name == SessionFile(session, "kitti") || name == SessionFile(session, "tum");
 }
 
 nlohmann::json Optional(const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(nullptr); }
@@ -97,6 +110,7 @@ std::string SessionsSvg(const MergeResult& result) {
 
 void WriteMerge(const fs::path& out, bool force, MergeResult& result, const PipelineConfig& config) {
     PrepareOutputFolder(out, force);
+    RemoveOwnFilesIf(out, IsMergeResultName);
     nlohmann::json sessions = nlohmann::json::array();
     GlobalMapBuilder joint_map(config.output.global_map_voxel);
     std::size_t connected = 0;

@@ -175,6 +175,21 @@ TEST(RunFolderSafety, RunForceRemovesTheResultsOfTheEarlierRun) {
     EXPECT_FALSE(fs::exists(run / "report" / "ape_over_time.svg"));
 }
 
+TEST(RunFolderSafety, OdometryForceThatFailsLeavesNoEarlierPoses) {
+    test::TempDir dir;
+    const fs::path out = dir / "odo";
+    fs::create_directories(out);
+    std::ofstream(out / "poses_kitti.txt") << "1 0 0 0 0 1 0 0 0 0 1 0\n";  // an earlier odometry's
+    std::ofstream(out / "notes.txt") << "mine";
+    const fs::path dataset = WritePcdFolder(dir / "scans");
+    std::ofstream(dataset / "scan_2.pcd", std::ios::trunc) << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n";  // cut short
+    const auto result = RunCli("odometry " + Quote(dataset.string()) + " --quiet --force --out " + Quote(out.string()));
+    EXPECT_NE(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("scan_2.pcd"), std::string::npos) << result.output;
+    EXPECT_FALSE(fs::exists(out / "poses_kitti.txt")) << "the earlier poses would pass as this run's";
+    EXPECT_EQ(test::ReadFile(out / "notes.txt"), "mine");
+}
+
 TEST(RunFolderSafety, ADatasetPathThatIsNotUtf8Runs) {
     test::TempDir dir;
     const fs::path dataset = WritePcdFolder(dir / "caf\xe9 scans");  // Latin-1: not UTF-8

@@ -68,7 +68,13 @@ TEST(Merge, UnconnectedSessionsAndMissingOrCorruptRunsAreReported) {
     auto& fleet = test::Fleet();
     const fs::path run_a = fleet.RunA(), run_c = fleet.RunC();
     const fs::path out = fleet.dir() / "merge_ac";
-    const auto result = RunCli("merge " + Quote(run_c.string()) + " " + Quote(run_a.string()) + " --out " + Quote(out.string()));
+    // --force into an earlier merge of more sessions: its trajectories must not pass as this merge's.
+    fs::create_directories(out);
+    for (const char* stale : {"session_01_poses_kitti.txt", "session_07_poses_tum.txt", "sessions.json"})
+        std::ofstream(out / stale) << "an earlier merge";
+    std::ofstream(out / "notes.txt") << "mine";
+    const auto result = RunCli("merge " + Quote(run_c.string()) + " " + Quote(run_a.string()) + " --force --out " +
+                               Quote(out.string()));
     EXPECT_EQ(result.exit_code, 3) << result.output;
     EXPECT_NE(result.output.find("has no cross-session closure tying it to the anchor"), std::string::npos) << result.output;
     const auto sessions = Sessions(out);
@@ -77,6 +83,8 @@ TEST(Merge, UnconnectedSessionsAndMissingOrCorruptRunsAreReported) {
     EXPECT_EQ(sessions["sessions"][1]["run"], fs::absolute(run_c).lexically_normal().string());
     EXPECT_FALSE(fs::exists(out / "session_01_poses_kitti.txt"));  // never placed at the origin
     EXPECT_TRUE(fs::exists(out / "session_00_poses_kitti.txt"));
+    EXPECT_FALSE(fs::exists(out / "session_07_poses_tum.txt"));
+    EXPECT_EQ(test::ReadFile(out / "notes.txt"), "mine");  // not a file revisit wrote
 
     const fs::path missing = fleet.dir() / "no_such_run";
     const auto absent = RunCli("merge " + Quote(run_a.string()) + " " + Quote(missing.string()) + " --out " +
