@@ -77,4 +77,18 @@ py::array_t<float> ToNumpy(std::vector<Eigen::Vector3f>&& points) {
                               reinterpret_cast<const float*>(owned->data()), free);
 }
 
+std::vector<std::string> SetOverrides(const py::dict& set) {
+    std::vector<std::string> overrides;
+    for (const auto& [key, value] : set) {
+        std::string text;
+        if (py::isinstance<py::bool_>(value)) {
+            text = value.cast<bool>() ? "true" : "false";
+        } else {
+            text = py::str(value).cast<std::string>();
+        }
+        overrides.push_back(py::str(key).cast<std::string>() + "=" + text);
+    }
+    return overrides;
+}
+
 }  // namespace revisit::python

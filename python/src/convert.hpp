@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Geometry>
+#include <string>
 #include <vector>
 
 #include "runfolder/run_state.hpp"
@@ -28,6 +29,8 @@ Eigen::Isometry3d ToIsometry(const py::handle& matrix, const char* name);
 py::array_t<double> ToNumpy(const Eigen::Isometry3d& pose);
 /// (N, 4, 4)
 py::array_t<double> ToNumpy(const Poses& poses);
+/// A `set={...}` dict as the `key=value` texts `--set` takes (True -> true).
+std::vector<std::string> SetOverrides(const py::dict& set);
 /// (N, 3) float32 owning a moved vector's memory.
 py::array_t<float> ToNumpy(std::vector<Eigen::Vector3f>&& points);
 

@@ -1,6 +1,8 @@
 /// `revisit.export`: `revisit export RUN --format ...` for a finished run folder.
 #include "exports.hpp"
 
+#include "convert.hpp"
+
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -51,17 +53,21 @@ py::array_t<double> OptimizePoseGraphNumpy(const py::array_t<double, py::array::
 void BindExports(py::module_& m) {
     m.def(
         "export",
-        [](const std::filesystem::path& run, const std::string& format, bool per_scan, const std::optional<std::filesystem::path>& out) {
+        [](const std::filesystem::path& run, const std::string& format, bool per_scan, const std::optional<std::filesystem::path>& out,
+           const py::dict& set) {
             ExportOptions options;
             options.format = format;
             options.per_scan = per_scan;
             if (out) options.out = *out;
+            options.overrides = SetOverrides(set);
             py::gil_scoped_release release;
             return ExportRun(run, options);
         },
         py::arg("run"), py::arg("format") = "g2o", py::arg("per_scan") = false, py::arg("out") = py::none(),
-        "Writes a finished run's pose graph (format='g2o', per map or per_scan) or its closures "
-        "(format='closures-json'); returns the file written (default: into the run folder).");
+        py::arg("set") = py::dict(),
+        "Writes a finished run's pose graph (format='g2o', per map or per_scan), its closures "
+        "(format='closures-json') or its occupancy grid (format='occupancy': the .pgm and its .yaml; `set` takes "
+        "occupancy.* keys); returns the file written (the occupancy grid's YAML; default: into the run folder).");
     m.def("optimize_pose_graph", &OptimizePoseGraphNumpy, py::arg("nodes"), py::arg("edges"), py::arg("config") = py::none(),
           "revisit's Ceres pose graph: nodes (N, 4, 4) initial T_world_node; edges (from, to, T_from_to 4x4, information "
           "6x6 over [translation; rotation], is_loop); the robust loss on loop edges and the solver settings from "

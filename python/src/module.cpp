@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "closure_pipeline.hpp"
+#include "convert.hpp"
 #include "core/error.hpp"
 #include "dataset.hpp"
 #include "exports.hpp"
@@ -18,18 +19,9 @@ namespace py = pybind11;
 
 namespace {
 
-/// Python values as the text `--set key=value` takes.
-std::string SetValue(const py::handle& value) {
-    if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-    if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-    return py::str(value).cast<std::string>();
-}
-
 revisit::PipelineConfig LoadConfig(const std::vector<std::string>& files, const py::dict& set,
                                    const std::optional<std::filesystem::path>& dataset) {
-    std::vector<std::string> overrides;
-    for (const auto& [key, value] : set) overrides.push_back(py::str(key).cast<std::string>() + "=" + SetValue(value));
-    revisit::PipelineConfig config = revisit::ResolveConfig(files, overrides);
+    revisit::PipelineConfig config = revisit::ResolveConfig(files, revisit::python::SetOverrides(set));
     if (dataset) {
         py::gil_scoped_release release;
         std::ostringstream log;

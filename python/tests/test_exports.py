@@ -4,6 +4,7 @@ import json
 import subprocess
 
 import numpy as np
+import pytest
 
 import revisit
 from g2o_reader import read_g2o
@@ -100,3 +101,18 @@ def test_closures_json_lists_every_accepted_closure(cli_run):
         np.testing.assert_allclose(np.array(c["T_query_ref"]), pose(row, "T_query_ref_refined"), atol=1e-6)
         information, covariance = np.array(c["information"]), np.array(c["covariance"])
         np.testing.assert_allclose(covariance @ information, np.eye(6), atol=1e-6)
+
+
+def test_occupancy_export_reads_back_as_map_server_reads_it(cli_run, tmp_path):
+    """The run's grid redrawn at 1 m cells: the PGM's header and size agree with its YAML."""
+    yaml_path = revisit.export(str(cli_run), format="occupancy", set={"occupancy.resolution": 1.0},
+                               out=str(tmp_path / "grid.pgm"))
+    fields = dict(line.split(": ", 1) for line in open(yaml_path).read().splitlines())
+    assert fields["image"] == "grid.pgm" and fields["mode"] == "trinary" and float(fields["resolution"]) == 1.0
+    magic, size, depth, pixels = (tmp_path / "grid.pgm").read_bytes().split(b"\n", 3)
+    width, height = map(int, size.split())
+    assert magic == b"P5" and depth == b"255" and len(pixels) == width * height
+    pixels = np.frombuffer(pixels, dtype=np.uint8)
+    assert set(np.unique(pixels)) <= {0, 205, 254} and (pixels == 0).any() and (pixels == 254).any()
+    with pytest.raises(revisit.ConfigError, match="occupancy"):
+        revisit.export(str(cli_run), format="occupancy", set={"graph.min_weight": 0.5}, out=str(tmp_path / "x.pgm"))

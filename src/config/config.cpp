@@ -228,8 +228,18 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     s.Add("output.write_report", &o.write_report, "", "render report/index.html");
     s.Add("output.report_candidates", &o.report_candidates, "",
           "report pages for the strongest candidates below the acceptance threshold (others: table rows)", Range{0, 1e6});
+    s.Add("output.report_closure_pages", &o.report_closure_pages, "",
+          "report pages for closures that reached the threshold: the worst, the best, a sample (false ones besides)", Range{0, 1e6});
     s.Add("output.scan_context", &o.scan_context, "", "run the ScanContext baseline when ground truth exists");
     s.Add("output.elevation_ablation", &o.elevation_ablation, "", "score the elevation-image ablation when ground truth exists");
+    auto& g2 = c.occupancy;
+    s.Add("occupancy.resolution", &g2.resolution, "m", "occupancy grid cell; 0 = 0.05 for 2D lasers, output.map_voxel for 3D", Range{0, 100});
+    s.Add("occupancy.max_cells_per_side", &g2.max_cells_per_side, "", "a larger extent doubles the cell until it fits", Range{16, 65536});
+    s.Add("occupancy.occupied_share", &g2.occupied_share, "", "a cell that ends this share of the rays reaching it is occupied", Range{0.01, 1});
+    s.Add("occupancy.min_height", &g2.min_height, "m", "3D: lowest obstacle above the levelled ground", Range{-100, 100});
+    s.Add("occupancy.max_height", &g2.max_height, "m", "3D: highest obstacle above the levelled ground", Range{-100, 1000});
+    s.Add("occupancy.ground_tolerance", &g2.ground_tolerance, "m", "3D: points this close to the ground make a cell free", Range{0, 10});
+    s.Add("occupancy.ground_cell", &g2.ground_cell, "m", "3D: the ground is the lowest point within one such cell", Range{0.05, 100});
 }
 
 void BindFleet(ConfigSchema& s, PipelineConfig& c) {

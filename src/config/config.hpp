@@ -74,8 +74,27 @@ struct OutputConfig {
     /// Report pages for this many of the strongest candidates below the acceptance threshold, besides every
     /// closure that reached it; the others are rows of the index's table (`revisit inspect` renders them).
     int report_candidates = 20;
+    /// Of the closures that reached the acceptance threshold, pages for at most this many (the worst, the
+    /// best, an even sample); every accepted closure the reference calls false has one besides. The report's
+    /// size then does not grow with the sequence: the others are table rows (`revisit inspect`).
+    int report_closure_pages = 24;
     bool scan_context = true;    ///< also run the ScanContext baseline when ground truth exists
     bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
+};
+
+/// The occupancy grid every run writes (occupancy.pgm, occupancy.yaml: src/exports/run_occupancy.hpp).
+struct OccupancyConfig {
+    double resolution = 0.0;          ///< [m per cell]; 0: 0.05 for 2D lasers, the stored maps' voxel for 3D runs
+    int max_cells_per_side = 8192;    ///< a larger extent doubles the cell until it fits (occupancy.yaml says which)
+    /// A cell observed this often as a ray's end, of all rays that ended in or crossed it, is occupied;
+    /// below, it is free. Walls seen at a grazing angle are also crossed by their neighbours' rays.
+    double occupied_share = 0.25;
+    double min_height = 0.3;          ///< [m] 3D runs: lowest obstacle above the levelled ground
+    double max_height = 2.0;          ///< [m] 3D runs: highest (a vehicle's or a person's height)
+    double ground_tolerance = 0.25;   ///< [m] 3D runs: points this close to the ground make a cell free
+    /// [m] 3D runs: the ground under a point is the lowest point within one such cell of its own (at least
+    /// the stored maps' voxel): it follows slopes and terraces that one plane per map does not.
+    double ground_cell = 0.5;
 };
 
 /// Several sessions and many machines (issue 20): `revisit merge`, `run --against`, `revisit batch`.
@@ -113,6 +132,7 @@ struct PipelineConfig {
     PredictedClosureConfig predicted;
     ScanContextConfig scan_context;
     OutputConfig output;
+    OccupancyConfig occupancy;
     FleetConfig fleet;
     /// Keys a config file or --set gave a value (LoadConfig fills it): automatic settings leave them alone.
     std::set<std::string> explicit_keys;

@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "exports/closures_json.hpp"
 #include "exports/pose_graph_export.hpp"
+#include "exports/run_occupancy.hpp"
 #include "runfolder/run_files.hpp"
 
 namespace revisit {
@@ -13,16 +14,22 @@ void WriteRunExports(const RunFolder& run, const RunState& state, const Pipeline
     const ExportGraph graph = RunPoseGraph(state, config, false);
     WriteFileAtomically(run.root() / "pose_graph.g2o", [&](std::ostream& out) { WriteG2o(out, graph); });
     WriteFileAtomically(run.root() / "closures.json", [&](std::ostream& out) { WriteClosuresJson(out, state, config); });
+    WriteRunOccupancy(run, state, config, run.root() / "occupancy.pgm");
 }
 
 fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
-    if (options.format != "g2o" && options.format != "closures-json") {
-        throw ConfigError("--format " + options.format + ": expected g2o or closures-json");
+    if (options.format != "g2o" && options.format != "closures-json" && options.format != "occupancy") {
+        throw ConfigError("--format " + options.format + ": expected g2o, closures-json or occupancy");
     }
     if (options.per_scan && options.format != "g2o") throw ConfigError("--per-scan applies to --format g2o only");
     const RunFolder run = RunFolder::Open(run_folder);
     RunState state = ReadRunState(run);
-    const PipelineConfig config = LoadConfig({run.config().string()}, {});
+    for (const auto& entry : options.overrides) {
+        if (entry.rfind("occupancy.", 0) != 0) {
+            throw ConfigError("--set " + entry + ": export takes occupancy.* keys only; the graph and the closures are the run's");
+        }
+    }
+    const PipelineConfig config = LoadConfig({run.config().string()}, options.overrides);
     // The registration's information is not in closures.csv: the run recorded it in closures.json.
     const fs::path recorded = run.root() / "closures.json";
     if (config.graph_noise.closure_information_from_registration) {
@@ -30,6 +37,12 @@ fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
         ReadClosureInformation(recorded, state);
     }
     fs::path out = options.out;
+    if (options.format == "occupancy") {
+        // The image and its YAML go together; the YAML names the image relative to itself.
+        if (out.empty()) out = run.root() / "occupancy.pgm";
+        if (out.extension() != ".pgm") throw ConfigError("--out " + out.string() + ": the occupancy image is a .pgm (its .yaml goes beside it)");
+        return WriteRunOccupancy(run, state, config, out);
+    }
     if (out.empty()) {
         out = run.root() / (options.format == "closures-json" ? "closures.json" : options.per_scan ? "pose_graph_scans.g2o" : "pose_graph.g2o");
     }

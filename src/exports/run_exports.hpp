@@ -1,8 +1,9 @@
 #pragma once
-/// The exports every run folder gets (pose_graph.g2o, closures.json), and `revisit export` for
-/// finished runs.
+/// The exports every run folder gets (pose_graph.g2o, closures.json, occupancy.pgm + .yaml), and
+/// `revisit export` for finished runs.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "config/config.hpp"
 #include "runfolder/run_folder.hpp"
@@ -10,16 +11,18 @@
 
 namespace revisit {
 
-/// pose_graph.g2o (per map) and closures.json into the run folder.
+/// pose_graph.g2o (per map), closures.json and occupancy.pgm + occupancy.yaml into the run folder.
 void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config);
 
 struct ExportOptions {
-    std::string format = "g2o";  ///< "g2o" or "closures-json"
+    std::string format = "g2o";  ///< "g2o", "closures-json" or "occupancy"
     bool per_scan = false;       ///< g2o: one vertex per scan instead of per local map
-    std::filesystem::path out;   ///< empty: into the run folder (pose_graph.g2o, pose_graph_scans.g2o, closures.json)
+    /// `key=value` over the run's config.yaml: occupancy.* keys only (the graph and closures are the run's).
+    std::vector<std::string> overrides;
+    std::filesystem::path out;   ///< empty: into the run folder (pose_graph.g2o, pose_graph_scans.g2o, closures.json, occupancy.pgm)
 };
 
-/// Re-creates an export from a finished run folder; returns the file written. Throws ConfigError for an
+/// Re-creates an export from a finished run folder; returns the file written (occupancy: its YAML). Throws ConfigError for an
 /// unknown format and DatasetError for a damaged run folder.
 std::filesystem::path ExportRun(const std::filesystem::path& run_folder, const ExportOptions& options);
 

@@ -23,6 +23,7 @@
 #include "odometry/lidar_odometry.hpp"
 #include "runfolder/folder_map_store.hpp"
 #include "runfolder/global_map.hpp"
+#include "runfolder/planar_scans.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/online.hpp"
 #include "pipeline/progress.hpp"
@@ -159,6 +160,9 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     };
     std::optional<OdometryStages> odometry;
     if (options.poses == PoseSource::kOdometry) odometry.emplace(config);
+    // A 2D laser's beams, kept per map for the occupancy grid's ray tracing at the corrected poses.
+    std::optional<PlanarScanWriter> planar_scans;
+    if (config.odometry.planar) planar_scans.emplace(run);
 
     RunState state;
     state.dataset = DatasetName(options.dataset);
@@ -259,6 +263,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         tbb::this_task_arena::isolate([&] {
             for (const auto& c : pipeline.AddScan(posed.position, posed.points, posed.T_world_sensor).closures) accepted += c.accepted;
         });
+        // The open map's id: the maps closed so far (a scan that closes a map starts the next one).
+        if (planar_scans) planar_scans->Add(static_cast<int>(pipeline.maps().size()), posed.position, posed.points);
         progress.Update(posed.position + 1, "maps " + std::to_string(pipeline.maps().size()) + "  closures " + std::to_string(accepted));
     };
     tbb::parallel_pipeline(kScansInFlight, tbb::make_filter<void, Item>(tbb::filter_mode::serial_in_order, read) &
@@ -279,6 +285,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                                                                    std::to_string(reader->Stats().scans) + " scans"
                                                              : std::string("no scans read"));
     }
+    if (planar_scans) planar_scans->Finish();
     for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
     if (const auto& drift = pipeline.DriftCalibration()) state.setting_updates.push_back(*drift);
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +

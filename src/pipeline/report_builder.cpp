@@ -207,8 +207,10 @@ ReportInput LoadReportInput(const RunFolder& run) {
         entry.reached_threshold = record.refined;
         entry.verified = record.refined && record.refinement.accepted;
         entry.reason = record.accepted ? "graph weight " + FormatNumber(record.graph_weight, 2) : record.reason;
-        if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first}))
+        if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first})) {
             entry.reason += ", FALSE against the reference poses";
+            entry.judged_false = true;
+        }
         if (record.refined) {
             entry.fitness = record.refinement.overlap;
             entry.rmse = record.refinement.rms;
@@ -307,6 +309,7 @@ ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string
                    overrides);
     ReportConfig report;
     report.strongest_candidates = config.output.report_candidates;
+    report.closure_page_budget = config.output.report_closure_pages;
     return report;
 }
 

@@ -41,6 +41,7 @@ struct ClosureEntry {
     std::optional<double> gt_translation_error;  ///< [m] planar, against ground truth, when known
     std::optional<double> gt_rotation_error;     ///< [deg] yaw
     std::optional<bool> gt_true_positive;        ///< ground truth says the two maps overlap
+    bool judged_false = false;                   ///< accepted, and the evaluation calls it false against the reference
 };
 
 struct PrCurvePoint {

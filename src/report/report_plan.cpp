@@ -19,25 +19,63 @@ bool StrongerCandidate(const ReportInput& input, std::size_t a, std::size_t b) {
     return a < b;
 }
 
-ReportPlan PlanReport(const ReportInput& input, int strongest_candidates, bool closure_pages, bool map_pages) {
+namespace {
+
+/// How far a closure is from right: the reference's error when known, else the registration's RMS.
+double Badness(const ClosureEntry& entry) {
+    if (entry.gt_translation_error) return *entry.gt_translation_error;
+    return entry.rmse.value_or(0.0);
+}
+
+/// The pages of the closures that reached the threshold: all when within the budget; else every false
+/// one, then the worst third and the best sixth of the accepted, then an even sample of the rest, so
+/// that a sequence of any length gets a report of one size.
+void ChooseReachedPages(const ReportInput& input, const std::vector<std::size_t>& reached, std::size_t budget,
+                        std::vector<bool>& has_page) {
+    if (reached.size() <= budget) {
+        for (const std::size_t i : reached) has_page[i] = true;
+        return;
+    }
+    std::vector<std::size_t> accepted;
+    for (const std::size_t i : reached) {
+        if (input.closures[i].judged_false) has_page[i] = true;
+        else if (input.closures[i].accepted) accepted.push_back(i);
+    }
+    std::stable_sort(accepted.begin(), accepted.end(),
+                     [&](std::size_t a, std::size_t b) { return Badness(input.closures[a]) > Badness(input.closures[b]); });
+    const std::size_t worst = std::min(accepted.size(), budget / 3);
+    const std::size_t best = std::min(accepted.size() - worst, budget / 6);
+    for (std::size_t k = 0; k < worst; ++k) has_page[accepted[k]] = true;
+    for (std::size_t k = 0; k < best; ++k) has_page[accepted[accepted.size() - 1 - k]] = true;
+    std::vector<std::size_t> rest;
+    for (const std::size_t i : reached)
+        if (!has_page[i]) rest.push_back(i);
+    const std::size_t sample = std::min(rest.size(), budget - worst - best);
+    // Evenly over the run (reached is in the order the closures were found): the k-th of `sample` strata.
+    for (std::size_t k = 0; k < sample; ++k) has_page[rest[(2 * k + 1) * rest.size() / (2 * sample)]] = true;
+}
+
+}  // namespace
+
+ReportPlan PlanReport(const ReportInput& input, const ReportPagePlan& pages) {
     ReportPlan plan;
     const std::size_t n = input.closures.size();
     plan.closure_has_page.assign(n, false);
-    if (closure_pages) {
-        std::vector<std::size_t> below;
+    if (pages.closure_pages) {
+        std::vector<std::size_t> reached, below;
         for (std::size_t i = 0; i < n; ++i) {
             const auto& entry = input.closures[i];
-            if (entry.accepted || entry.reached_threshold) plan.closure_has_page[i] = true;
-            else below.push_back(i);
+            (entry.accepted || entry.reached_threshold ? reached : below).push_back(i);
         }
-        const std::size_t k = std::min(below.size(), static_cast<std::size_t>(std::max(0, strongest_candidates)));
+        ChooseReachedPages(input, reached, static_cast<std::size_t>(std::max(0, pages.closure_budget)), plan.closure_has_page);
+        const std::size_t k = std::min(below.size(), static_cast<std::size_t>(std::max(0, pages.strongest_candidates)));
         std::partial_sort(below.begin(), below.begin() + k, below.end(),
                           [&](std::size_t a, std::size_t b) { return StrongerCandidate(input, a, b); });
         for (std::size_t j = 0; j < k; ++j) plan.closure_has_page[below[j]] = true;
         for (std::size_t i = 0; i < n; ++i)
             if (plan.closure_has_page[i]) plan.closure_pages.push_back(i);
     }
-    if (map_pages) {
+    if (pages.map_pages) {
         for (const std::size_t i : plan.closure_pages) {
             plan.map_pages.push_back(input.closures[i].closure.query_id);
             plan.map_pages.push_back(input.closures[i].closure.ref_id);

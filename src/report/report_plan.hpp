@@ -18,9 +18,18 @@ struct ReportPlan {
     bool MapHasPage(int map_id) const;
 };
 
-/// `strongest_candidates`: how many candidates below the threshold get a page, strongest first (most
-/// inliers, then most votes, then earliest). `closure_pages` / `map_pages` false: none of that kind.
-ReportPlan PlanReport(const ReportInput& input, int strongest_candidates, bool closure_pages, bool map_pages);
+/// Which pages a report gets (ReportConfig's fields of the same meaning).
+struct ReportPagePlan {
+    /// Closures that reached the threshold with a page, at most: every one when they are this many or
+    /// fewer; else the worst and the best accepted and an even sample (accepted false ones besides).
+    int closure_budget = 24;
+    /// Candidates below the threshold with a page, strongest first (most inliers, then most votes, then earliest).
+    int strongest_candidates = 20;
+    bool closure_pages = true;  ///< false: no closure page at all
+    bool map_pages = true;      ///< pages for the maps of the closures with a page
+};
+
+ReportPlan PlanReport(const ReportInput& input, const ReportPagePlan& pages);
 
 /// The order in which candidates are ranked: more inliers, then more votes, then the earlier index.
 bool StrongerCandidate(const ReportInput& input, std::size_t a, std::size_t b);

@@ -75,12 +75,16 @@ void CheckClosureIndex(const ReportInput& input, std::size_t index) {
                                 std::to_string(input.closures.size()) + " closures)");
 }
 
+ReportPagePlan PagePlanConfig(const ReportConfig& config) {
+    return {config.closure_page_budget, config.strongest_candidates, config.closure_pages, config.map_pages};
+}
+
 /// The plan of the report in `report_dir`, for a page rendered alone: links only where the index put pages.
 ReportPlan PlanForSinglePage(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config,
                              bool* has_index) {
     *has_index = std::filesystem::exists(report_dir / "index.html");
-    return *has_index ? PlanReport(input, config.strongest_candidates, config.closure_pages, config.map_pages)
-                      : PlanReport(input, 0, false, false);
+    return *has_index ? PlanReport(input, PagePlanConfig(config))
+                      : PlanReport(input, ReportPagePlan{0, 0, false, false});
 }
 
 /// One page to render: a closure's (index into input.closures) or a map's (id).
@@ -146,7 +150,7 @@ std::filesystem::path WriteMapPairPage(const ReportInput& input, int query_map_i
 ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config,
                         const ReportProgress& progress) {
     std::filesystem::create_directories(report_dir);
-    const ReportPlan plan = PlanReport(input, config.strongest_candidates, config.closure_pages, config.map_pages);
+    const ReportPlan plan = PlanReport(input, PagePlanConfig(config));
 
     // Pages first, in parallel: each writes only its own files; thumbnails and counts land in their slots.
     std::vector<PageTask> tasks;
@@ -230,7 +234,9 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
 
     index.Heading("Closure pages", 2, "closures");
     index.Paragraph(std::to_string(plan.closure_pages.size()) + " of " + std::to_string(input.closures.size()) +
-                    " candidates have a page: every one that reached the acceptance threshold and the " +
+                    " candidates have a page: of those that reached the acceptance threshold, every one when they are " +
+                    std::to_string(config.closure_page_budget) +
+                    " or fewer, else every false one, the worst, the best and an even sample; and the " +
                     std::to_string(config.strongest_candidates) +
                     " strongest below it. Any other: `" + input.inspect_command + " --closure N`.");
     std::string thumbs = "<div class=\"thumbs\">\n";

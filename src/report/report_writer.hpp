@@ -21,6 +21,10 @@ struct ReportConfig {
     /// Besides every closure that reached the acceptance threshold, pages for this many of the strongest
     /// candidates below it (most inliers); the others are table rows, rendered on demand by `revisit inspect`.
     int strongest_candidates = 20;
+    /// Of the closures that reached the threshold, pages for at most this many: the worst and the best
+    /// accepted (by the reference's error, else the registration's RMS) and an even sample of the rest.
+    /// Every accepted closure the reference calls false gets a page besides.
+    int closure_page_budget = 24;
     bool map_pages = true;                 ///< pages for the local maps of the rendered closures; the rest: table rows
     ReportConfig();
 };

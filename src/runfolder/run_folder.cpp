@@ -19,7 +19,8 @@ bool IsRunResultName(const std::string& name) {
                                          "poses_odometry_tum.txt", "poses_corrected_kitti.txt", "poses_corrected_tum.txt",
                                          "poses_reference_tum.txt", "closures.csv", "local_maps.csv", "comparisons.csv",
                                          "metrics.json", "timings.json", "database.bin", "map_corrected.ply",
-                                         "comparison.md", "ground_truth_closures.txt"};
+                                         "comparison.md", "ground_truth_closures.txt", "pose_graph.g2o", "closures.json",
+                                         "occupancy.pgm", "occupancy.yaml"};
     for (const char* n : kNames) {
         if (name == n) return true;
     }

@@ -1,0 +1,182 @@
+#include "exports/run_occupancy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+
+#include "closures/ground_alignment.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/quantile.hpp"
+#include "runfolder/folder_map_store.hpp"
+#include "runfolder/planar_scans.hpp"
+
+namespace revisit {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kLaserResolution = 0.05;  ///< [m] what 2D laser maps are commonly served at
+
+Eigen::Vector2d Xy(const Eigen::Vector3d& p) { return p.head<2>(); }
+
+const Eigen::Isometry3d& ScanPose(const RunFolder& run, const RunState& state, int map_id, const PlanarScan& scan) {
+    if (scan.position >= state.corrected.size()) {
+        throw DatasetError(PlanarScansFile(run, map_id), "scan position " + std::to_string(scan.position) + " is past the run's " +
+                                                             std::to_string(state.corrected.size()) + " poses");
+    }
+    return state.corrected[scan.position];
+}
+
+/// Traces every stored beam twice over the maps: once for the extent, once into the grid.
+OccupancyGrid PlanarOccupancy(const RunFolder& run, const RunState& state, const OccupancyConfig& config) {
+    Eigen::AlignedBox2d extent;
+    for (const auto& map : state.maps) {
+        for (const auto& scan : ReadPlanarScans(run, map.id)) {
+            const Eigen::Isometry3d& T_world_sensor = ScanPose(run, state, map.id, scan);
+            extent.extend(Xy(T_world_sensor.translation()));
+            for (const auto& p : scan.points_in_sensor) extent.extend(Xy(T_world_sensor * Eigen::Vector3d(p.x(), p.y(), 0.0)));
+        }
+    }
+    if (!state.maps.empty() && extent.isEmpty() && !fs::exists(PlanarScansFile(run, state.maps.front().id))) {
+        throw DatasetError(run.maps_dir(), "holds no scans_NNNN.bin: this 2D run was made by a revisit that did not keep its "
+                                           "scans for the occupancy grid; run it again");
+    }
+    const double wanted = config.resolution > 0.0 ? config.resolution : kLaserResolution;
+    OccupancyGrid grid(extent, FittingResolution(extent, wanted, config.max_cells_per_side));
+    for (const auto& map : state.maps) {
+        for (const auto& scan : ReadPlanarScans(run, map.id)) {
+            const Eigen::Isometry3d& T_world_sensor = ScanPose(run, state, map.id, scan);
+            const Eigen::Vector2d from = Xy(T_world_sensor.translation());
+            for (const auto& p : scan.points_in_sensor) grid.AddRay(from, Xy(T_world_sensor * Eigen::Vector3d(p.x(), p.y(), 0.0)));
+        }
+    }
+    return grid;
+}
+
+/// A point's height above the ground beside it: the lowest point within one ground cell of its own, in
+/// the map's levelled frame. One plane per map does not follow a campus's terraces and slopes (a
+/// handheld walk's maps span metres of height); the lowest point nearby does, and a wall seen down to
+/// the floor stands on it.
+class LocalGround {
+  public:
+    LocalGround(const std::vector<Eigen::Vector3d>& points_levelled, double cell) : cell_(cell) {
+        for (const auto& q : points_levelled) {
+            const auto key = Key(q);
+            const auto it = lowest_.find(key);
+            if (it == lowest_.end() || q.z() < it->second) lowest_[key] = q.z();
+        }
+    }
+    /// Whether `q` lies within one cell of `cells`' (the cells of the sensor's path).
+    bool Beside(const Eigen::Vector3d& q, const std::vector<std::pair<long, long>>& cells) const {
+        const auto [x, y] = Key(q);
+        return std::any_of(cells.begin(), cells.end(), [&](const auto& c) { return std::labs(c.first - x) <= 1 && std::labs(c.second - y) <= 1; });
+    }
+    std::pair<long, long> Key(const Eigen::Vector3d& q) const {
+        return {static_cast<long>(std::floor(q.x() / cell_)), static_cast<long>(std::floor(q.y() / cell_))};
+    }
+    double HeightOf(const Eigen::Vector3d& q) const {
+        const auto [x, y] = Key(q);
+        double ground = q.z();
+        for (long dx = -1; dx <= 1; ++dx) {
+            for (long dy = -1; dy <= 1; ++dy) {
+                const auto it = lowest_.find({x + dx, y + dy});
+                if (it != lowest_.end()) ground = std::min(ground, it->second);
+            }
+        }
+        return q.z() - ground;
+    }
+
+  private:
+    struct KeyHash {
+        std::size_t operator()(const std::pair<long, long>& k) const { return std::size_t(k.first) * 73856093u ^ std::size_t(k.second) * 19349669u; }
+    };
+    double cell_;
+    std::unordered_map<std::pair<long, long>, double, KeyHash> lowest_;
+};
+
+/// One map's points: (x, y) in the first map's levelled frame and the height above the ground beside it,
+/// with the thickness of the ground where the sensor went.
+struct MapHeights {
+    std::vector<std::pair<Eigen::Vector2d, double>> points;
+    double ground_thickness = 0.0;  ///< [m]
+};
+
+/// A 3D run's grid: heights above the ground beside each point (LocalGround, in each map's levelled
+/// frame), positions in the first map's levelled frame (a handheld walk starts tilted). The ground's
+/// thickness is measured where the sensor went, which is ground by construction: a handheld map's
+/// floor is 0.3-0.5 m thick (range noise, the odometry's drift within the map), a car's road a few
+/// centimetres. Points within that thickness are ground, never obstacles.
+OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
+    const OccupancyConfig& o = config.occupancy;
+    std::optional<Eigen::Isometry3d> T_level_world;
+    const auto measure = [&](const MapRecordSummary& map) {
+        const auto points = ReadMapPoints(run, map.id);
+        const GroundAlignment ground = AlignGround(points);
+        const Eigen::Isometry3d T_ground_map = ground.aligned ? ground.T_ground_map : map.T_ground_map;
+        if (!T_level_world) T_level_world = T_ground_map * map.T_world_map_corrected.inverse();
+        const Eigen::Isometry3d T_level_map = *T_level_world * map.T_world_map_corrected;
+        std::vector<Eigen::Vector3d> levelled(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) levelled[i] = T_ground_map * points[i].cast<double>();
+        const LocalGround local(levelled, std::max(o.ground_cell, config.output.map_voxel));
+        // The sensor's path in the levelled map frame (the map was built from the odometry poses).
+        std::vector<std::pair<long, long>> path;
+        for (std::size_t k = map.first_scan; k <= map.last_scan && k < state.odometry.size(); ++k)
+            path.push_back(local.Key(T_ground_map * map.T_world_map.inverse() * state.odometry[k].translation()));
+        std::sort(path.begin(), path.end());
+        path.erase(std::unique(path.begin(), path.end()), path.end());
+        MapHeights out;
+        out.points.resize(points.size());
+        std::vector<double> under_path;
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const double height = local.HeightOf(levelled[i]);
+            out.points[i] = {Xy(T_level_map * points[i].cast<double>()), height};
+            // Below the band's middle: the floor, not the carrier or a ceiling over the path.
+            if (height < 0.5 * o.max_height && local.Beside(levelled[i], path)) under_path.push_back(height);
+        }
+        out.ground_thickness = Quantile(under_path, 0.9);
+        return out;
+    };
+    // Two passes as for the lasers: the extent first, so that memory holds one map's points at a time.
+    Eigen::AlignedBox2d extent;
+    for (const auto& map : state.maps) {
+        for (const auto& [xy, height] : measure(map).points)
+            if (height <= o.max_height) extent.extend(xy);
+    }
+    const double wanted = o.resolution > 0.0 ? o.resolution : config.output.map_voxel;
+    OccupancyGrid grid(extent, FittingResolution(extent, wanted, o.max_cells_per_side));
+    T_level_world.reset();
+    for (const auto& map : state.maps) {
+        const MapHeights heights = measure(map);
+        const double ground = std::max(o.ground_tolerance, heights.ground_thickness);
+        const double lowest_obstacle = std::max(o.min_height, ground);
+        for (const auto& [xy, height] : heights.points) {
+            if (height < ground) {
+                grid.AddMiss(xy);
+            } else if (height >= lowest_obstacle && height <= o.max_height) {
+                grid.AddHit(xy);
+            }
+        }
+    }
+    return grid;
+}
+
+}  // namespace
+
+OccupancyGrid BuildRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
+    return config.odometry.planar ? PlanarOccupancy(run, state, config.occupancy) : BandOccupancy(run, state, config);
+}
+
+fs::path WriteRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config, const fs::path& pgm) {
+    const OccupancyGrid grid = BuildRunOccupancy(run, state, config);
+    fs::path yaml = pgm;
+    yaml.replace_extension(".yaml");
+    WriteFileAtomically(pgm, [&](std::ostream& out) { WritePgm(out, grid, config.occupancy.occupied_share); });
+    WriteFileAtomically(yaml, [&](std::ostream& out) { WriteMapYaml(out, grid, pgm.filename().string()); });
+    return yaml;
+}
+
+}  // namespace revisit
