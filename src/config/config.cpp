@@ -58,6 +58,8 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
     s.Add("odometry.map_travel_horizon", &o.map_travel_horizon, "m",
           "the map keeps only voxels a scan saw within this much travel, so a scan registers to the scans just before and not to a drifted earlier pass (0 = every voxel within range, KISS-ICP)",
           Range{0, 1e6});
+    s.Add("odometry.recent_travel_check", &o.recent_travel_check, "",
+          "2D lasers without wheel odometry: also register each frame to the voxels seen within the last max_range of travel, and keep that pose when it explains the scan clearly better there (a drifted earlier pass pulled the frame)");
     s.Add("odometry.deskew", &o.deskew, "", "constant-velocity motion compensation (paper-era: off)");
     s.Add("odometry.azimuth_clockwise", &o.azimuth_clockwise, "", "deskew without point times: sweep direction (KITTI: clockwise)");
     s.Add("odometry.planar", &o.planar, "", "estimate x, y, yaw only (2D lasers)");

@@ -63,11 +63,13 @@ std::string Describe(double value) {
 LidarOdometry::LidarOdometry(const OdometryConfig& config)
     : config_(Validated(config)),
       map_(config.VoxelSize(), config.max_points_per_voxel),
+      recent_map_(config.VoxelSize(), config.max_points_per_voxel),
       threshold_(config.initial_threshold, config.min_motion_th, config.max_range),
       prior_bias_(PriorBiasConfig{config.prior_bias_correction, config.prior_bias_window}) {
     // 2D scans have no planes in the map (a wall is a line): they stay point-to-point. With ring_start a
     // 3D map keeps normals until the motion is measured (MotionUnmeasured, RegisterFrom).
     map_.EnableNormals(config.residual == IcpResidual::kPointToPlane || (config.ring_start && !config.planar), config.planar);
+    recent_map_.EnableNormals(config.residual == IcpResidual::kPointToPlane, config.planar);
 }
 
 void LidarOdometry::SetMaxRange(double max_range) {
@@ -113,15 +115,15 @@ std::string LidarOdometry::DegeneracyReason(const std::vector<Eigen::Vector3d>& 
     return {};
 }
 
-std::size_t LidarOdometry::CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor,
-                                         double radius, std::size_t stride) const {
+std::size_t LidarOdometry::CountAgreeing(const VoxelHashMap& map, const std::vector<Eigen::Vector3d>& source,
+                                         const Eigen::Isometry3d& T_world_sensor, double radius, std::size_t stride) const {
     // An integer sum: the same at any thread count.
     const std::size_t samples = (source.size() + stride - 1) / stride;
     const std::size_t count = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, samples, 512), std::size_t{0},
         [&](const tbb::blocked_range<std::size_t>& range, std::size_t sum) {
             for (std::size_t k = range.begin(); k != range.end(); ++k)
-                sum += map_.FindNearest(T_world_sensor * source[k * stride], radius) != nullptr;
+                sum += map.FindNearest(T_world_sensor * source[k * stride], radius) != nullptr;
             return sum;
         },
         std::plus<>());
@@ -142,6 +144,11 @@ void LidarOdometry::ApplyMapUpdate() {
     const double horizon = config_.map_travel_horizon;
     map_.RemoveFarFrom(map_update_origin_, map_update_radius_,
                        horizon > 0.0 ? map_update_travel_ - horizon : -std::numeric_limits<double>::infinity());
+    if (recent_check_active_) {
+        recent_map_.SetStamp(map_update_travel_);
+        recent_map_.AddPoints(points_in_world_);
+        recent_map_.RemoveFarFrom(map_update_origin_, map_update_radius_, map_update_travel_ - config_.max_range);
+    }
     map_update_pending_ = false;
 }
 
@@ -150,7 +157,7 @@ const VoxelHashMap& LidarOdometry::LocalMap() {
     return map_;
 }
 
-Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
+Eigen::Isometry3d LidarOdometry::CorrelativeStart(const VoxelHashMap& map, const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
                                                   const Eigen::Isometry3d& delta, double& resolution) {
     CorrelativeMatchConfig match_config;
     // Between the peaks of a corridor's likelihood (the true step and one a metre or two along it) the
@@ -178,9 +185,9 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vecto
     const auto gather = [&](double window) {
         reference_.clear();
         if (fine)
-            map_.AllPointsNear(T_centre.translation(), config_.max_range + window, reference_);
+            map.AllPointsNear(T_centre.translation(), config_.max_range + window, reference_);
         else
-            map_.PointsNear(T_centre.translation(), config_.max_range + window, reference_);
+            map.PointsNear(T_centre.translation(), config_.max_range + window, reference_);
     };
     gather(config_.correlative_window);
     CorrelativeMatch match = MatchCorrelative2D(reference_, source, T_centre, match_config);
@@ -200,7 +207,7 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const std::vector<Eigen::Vecto
     return match.valid ? match.T_world_sensor : ProjectToPlanar(Orthonormalized(last_pose * delta));
 }
 
-std::string LidarOdometry::RegisterFrom(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_start,
+std::string LidarOdometry::RegisterFrom(const VoxelHashMap& map, const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_start,
                                         const Eigen::Isometry3d& delta, const Eigen::Isometry3d& last_pose, bool turn_hypothesis,
                                         double start_resolution, Eigen::Isometry3d& T_new) {
     const double voxel = config_.VoxelSize();
@@ -220,11 +227,11 @@ std::string LidarOdometry::RegisterFrom(const std::vector<Eigen::Vector3d>& sour
     // back to standing still (a drive recorded at 3 m/s lost 2.7 m over its first 9 scans). Along the
     // ground's normal that pull vanishes and the structure decides the step.
     params.point_to_plane = config_.residual == IcpResidual::kPointToPlane || MotionUnmeasured();
-    IcpResult icp = RegisterPointsToMap(source, map_, T_start, params);
+    IcpResult icp = RegisterPointsToMap(source, map, T_start, params);
     // The agreement check needs a share, not a count: every k-th point of ~500 is enough and keeps
     // its cost a fraction of one ICP iteration. Comparing two hypotheses counts every point.
     const std::size_t stride = std::max<std::size_t>(1, source.size() / kAgreementSamples);
-    std::size_t agreeing = icp.valid ? CountAgreeing(source, icp.T_world_sensor, voxel, stride) : 0;
+    std::size_t agreeing = icp.valid ? CountAgreeing(map, source, icp.T_world_sensor, voxel, stride) : 0;
     // A swaying sensor (handheld, legged) reverses its turns between scans, so constant velocity
     // can predict the rotation wrongly by more than ICP's basin. When the predicted turn moves
     // points by more than a voxel, also register from the translation-only prediction and keep
@@ -234,10 +241,10 @@ std::string LidarOdometry::RegisterFrom(const std::vector<Eigen::Vector3d>& sour
     delta_translation.linear().setIdentity();
     if (turn_hypothesis && config_.turn_hypothesis && !poses_.empty() && !stats_.prior_used &&
         ModelError(delta_translation.inverse() * delta, config_.max_range) > voxel) {
-        const IcpResult alternative = RegisterPointsToMap(source, map_, Orthonormalized(last_pose * delta_translation), params);
+        const IcpResult alternative = RegisterPointsToMap(source, map, Orthonormalized(last_pose * delta_translation), params);
         const std::size_t alternative_agreeing =
-            alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(source, alternative.T_world_sensor, voxel, 1) : 0;
-        if (icp.valid) agreeing = CountAgreeing(source, icp.T_world_sensor, voxel, 1);
+            alternative.valid && alternative.T_world_sensor.matrix().allFinite() ? CountAgreeing(map, source, alternative.T_world_sensor, voxel, 1) : 0;
+        if (icp.valid) agreeing = CountAgreeing(map, source, icp.T_world_sensor, voxel, 1);
         if (alternative_agreeing > agreeing) {
             icp = alternative;
             agreeing = alternative_agreeing;
@@ -277,6 +284,10 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
     if (!prepared.PreparedFor(config_)) prepared = PrepareScan(scan, config_);
     stats_ = OdometryFrameStats{};
     stats_.input_points = scan.points.size();
+    // A 2D laser logged without wheel odometry keeps the map of its recent travel alongside (CheckRecentTravel).
+    if (poses_.empty())
+        recent_check_active_ = config_.planar && config_.correlative_start && config_.recent_travel_check &&
+                               !(config_.use_prior && scan.T_odom_sensor);
     const Eigen::Isometry3d last_pose = poses_.empty() ? Eigen::Isometry3d::Identity() : poses_.back();
     const Eigen::Isometry3d delta = poses_.empty() ? Eigen::Isometry3d::Identity() : PredictMotion(scan);
     Eigen::Isometry3d T_predicted = Orthonormalized(last_pose * delta);
@@ -320,13 +331,14 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
         const bool correlative = config_.planar && config_.correlative_start && !poses_.empty();
         const bool correlative_first = correlative && !stats_.prior_used;
         double resolution = 0.0;
-        if (correlative_first) T_start = CorrelativeStart(source, last_pose, delta, resolution);
-        problem = RegisterFrom(source, T_start, delta, last_pose, !correlative_first, resolution, T_new);
+        if (correlative_first) T_start = CorrelativeStart(map_, source, last_pose, delta, resolution);
+        problem = RegisterFrom(map_, source, T_start, delta, last_pose, !correlative_first, resolution, T_new);
+        if (problem.empty() && correlative_first && recent_check_active_) CheckRecentTravel(source, last_pose, delta, T_start, T_new);
         if (!problem.empty() && correlative && !correlative_first) {
-            const Eigen::Isometry3d T_match = CorrelativeStart(source, last_pose, delta, resolution);
+            const Eigen::Isometry3d T_match = CorrelativeStart(map_, source, last_pose, delta, resolution);
             const OdometryFrameStats first_try = stats_;
             Eigen::Isometry3d T_retry = T_predicted;
-            if (RegisterFrom(source, T_match, delta, last_pose, false, resolution, T_retry).empty()) {
+            if (RegisterFrom(map_, source, T_match, delta, last_pose, false, resolution, T_retry).empty()) {
                 problem.clear();
                 T_new = T_retry;
                 T_start = T_match;

@@ -34,6 +34,7 @@ struct OdometryFrameStats {
     bool turn_hypothesis_used = false;   ///< the translation-only prediction registered better
     bool correlative_used = false;       ///< the ICP started from a correlative scan match
     double correlative_score = 0.0;      ///< its mean likelihood in [0, 1]
+    bool recent_travel_used = false;     ///< registered to the recent travel's map, not the whole map (CheckRecentTravel)
     bool degenerate = false;             ///< pose = prediction, map not updated
     std::string warning;                 ///< why the frame was degenerate
 };
@@ -81,21 +82,30 @@ class LidarOdometry {
     bool MotionUnmeasured() const;
     /// Source points within `radius` of a map point when placed at `T_world_sensor` (every `stride`-th
     /// point checked, the count scaled back).
-    std::size_t CountAgreeing(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius,
+    std::size_t CountAgreeing(const VoxelHashMap& map, const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_world_sensor, double radius,
                               std::size_t stride) const;
     /// The pose a correlative match of `source` against the map finds around the motion `delta` from
     /// `last_pose` (the prediction when there is nothing to match); `resolution` [m] gets its cell (0: none).
-    Eigen::Isometry3d CorrelativeStart(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
+    Eigen::Isometry3d CorrelativeStart(const VoxelHashMap& map, const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
                                        const Eigen::Isometry3d& delta, double& resolution);
     /// ICP from `T_start` with the checks of a registration; empty and `T_new` set when it registered,
     /// else why not. `start_resolution` [m]: the start's known uncertainty (a correlative cell).
-    std::string RegisterFrom(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_start, const Eigen::Isometry3d& delta,
+    std::string RegisterFrom(const VoxelHashMap& map, const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_start, const Eigen::Isometry3d& delta,
                              const Eigen::Isometry3d& last_pose, bool turn_hypothesis, double start_resolution, Eigen::Isometry3d& T_new);
+    /// A frame registered to the whole map (`T_start` -> `T_new`) is registered again to the map of the
+    /// last max_range of travel; when that map explains the scan clearly better at its own pose, the
+    /// whole map's pull came from a drifted earlier pass, and the recent pose replaces it
+    /// (odometry/recent_travel_check.cpp).
+    void CheckRecentTravel(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose, const Eigen::Isometry3d& delta,
+                           Eigen::Isometry3d& T_start, Eigen::Isometry3d& T_new);
     /// [m] a translation correction beyond this is a jump, not a registration.
     double CorrectionLimit() const;
 
     OdometryConfig config_;
     VoxelHashMap map_;
+    /// The voxels seen within the last max_range of travel (CheckRecentTravel), when recent_check_active_.
+    VoxelHashMap recent_map_;
+    bool recent_check_active_ = false;  ///< planar, no wheel odometry, odometry.recent_travel_check
     AdaptiveThreshold threshold_;
     Poses poses_;
     Eigen::Isometry3d last_delta_ = Eigen::Isometry3d::Identity();

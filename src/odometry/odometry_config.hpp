@@ -65,6 +65,10 @@ struct OdometryConfig {
     /// KISS-ICP). An earlier pass of the same place lies in the map where the odometry's drift put it,
     /// and a scan that sees it again registers to that copy instead of to the scans just before.
     double map_travel_horizon = 0.0;
+    /// Planar, without wheel odometry: a frame is also registered to the voxels seen within the last
+    /// max_range of travel, and that pose replaces the whole map's when it explains the scan clearly
+    /// better against them (a drifted earlier pass pulled the frame; odometry/recent_travel_check.cpp).
+    bool recent_travel_check = true;
     bool deskew = false;             ///< constant-velocity motion compensation of each sweep
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)
