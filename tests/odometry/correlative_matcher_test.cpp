@@ -170,6 +170,18 @@ TEST(CorrelativeOdometry, CorridorStepsFollowTheTruth) {
     EXPECT_EQ(bad_steps, 0);
 }
 
+/// The settings the data gives belgioioso (0.1 m voxels).
+OdometryConfig BelgioiosoSettings() {
+    OdometryConfig config;
+    config.planar = true;
+    config.max_range = 30.0;
+    config.min_range = 0.8;
+    config.voxel_size = 0.1;
+    config.initial_threshold = 0.2;
+    config.min_motion_th = 0.01;
+    return config;
+}
+
 // Belgioioso's scan 192 sees a corridor an earlier pass mapped: that pass lies in the map where the
 // odometry's drift put it, and the scan registered to it, 0.42 m and 1.6 deg off the scans just
 // before (the map that starts there was then false at its first scan). With a map of the last range's
@@ -178,13 +190,7 @@ TEST(CorrelativeOdometry, AMapOfRecentTravelKeepsADriftedEarlierPassOut) {
     const std::string log = "belgioioso";
     REVISIT_REQUIRE_DATA(CarmenDir(log) / "poses.txt");
     const auto poses = LoadPoses(log);
-    OdometryConfig config;
-    config.planar = true;
-    config.max_range = 30.0;
-    config.min_range = 0.8;
-    config.voxel_size = 0.1;
-    config.initial_threshold = 0.2;
-    config.min_motion_th = 0.01;
+    OdometryConfig config = BelgioiosoSettings();
     config.map_travel_horizon = config.max_range;
     LidarOdometry odometry(config);
     const int bad_steps =
@@ -201,13 +207,7 @@ TEST(CorrelativeOdometry, TheRecentTravelOverrulesAPullOntoADriftedEarlierPass) 
     const std::string log = "belgioioso";
     REVISIT_REQUIRE_DATA(CarmenDir(log) / "poses.txt");
     const auto poses = LoadPoses(log);
-    OdometryConfig config;
-    config.planar = true;
-    config.max_range = 30.0;
-    config.min_range = 0.8;
-    config.voxel_size = 0.1;
-    config.initial_threshold = 0.2;
-    config.min_motion_th = 0.01;
+    OdometryConfig config = BelgioiosoSettings();
     ASSERT_TRUE(config.recent_travel_check);  // the default
     const int last = 200;
     ASSERT_GT(static_cast<int>(poses.size()), last);
