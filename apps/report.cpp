@@ -76,14 +76,16 @@ void AddReportCommands(CLI::App& root, Action& action) {
     auto* report = root.add_subcommand("report", "Regenerate the HTML report of a run folder");
     report->footer(
         "Draws every picture from the run folder alone (nothing is recomputed); replaces the pages in RUN_DIR/report/.\n"
-        "Pages for every closure that reached the acceptance threshold and for the output.report_candidates\n"
-        "strongest candidates below it; every candidate is a row of the index's table (`revisit inspect` renders\n"
-        "the others). Templates and style: share/report/ (REVISIT_SHARE_DIR overrides).\n"
+        "Pages for the closures that reached the acceptance threshold (all of them up to output.report_closure_pages,\n"
+        "else every false one, the worst, the best and a sample), the output.report_candidates strongest below it and\n"
+        "at most output.report_map_pages of their maps: the report's size does not grow with the sequence. Every\n"
+        "candidate and map is a row of the index's tables (`revisit inspect` renders the others). Templates and\n"
+        "style: share/report/ (REVISIT_SHARE_DIR overrides).\n"
         "Examples:\n"
         "  revisit report reports/latest\n"
         "  revisit report reports/latest --set output.report_candidates=100 --threads 2");
     report->add_option("run", o->run, "run folder")->required();
-    report->add_option("--set", o->overrides, "key=value over the run's configuration (output.report_candidates)");
+    report->add_option("--set", o->overrides, "key=value over the run's configuration (output.report_closure_pages, output.report_candidates, output.report_map_pages)");
     report->add_option("--threads", o->threads, "pages rendered in parallel (default: all cores; the files do not depend on it)");
     report->add_flag("--quiet", o->quiet, "no progress output");
     report->callback([o, &action] { action = [o] { return RunReport(*o); }; });

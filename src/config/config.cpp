@@ -232,6 +232,7 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
           "report pages for the strongest candidates below the acceptance threshold (others: table rows)", Range{0, 1e6});
     s.Add("output.report_closure_pages", &o.report_closure_pages, "",
           "report pages for closures that reached the threshold: the worst, the best, a sample (false ones besides)", Range{0, 1e6});
+    s.Add("output.report_map_pages", &o.report_map_pages, "", "report pages for at most this many local maps (those of the closure pages)", Range{0, 1e6});
     s.Add("output.scan_context", &o.scan_context, "", "run the ScanContext baseline when ground truth exists");
     s.Add("output.elevation_ablation", &o.elevation_ablation, "", "score the elevation-image ablation when ground truth exists");
     auto& g2 = c.occupancy;

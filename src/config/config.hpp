@@ -73,11 +73,12 @@ struct OutputConfig {
     bool write_report = true;    ///< render report/index.html at the end
     /// Report pages for this many of the strongest candidates below the acceptance threshold, besides every
     /// closure that reached it; the others are rows of the index's table (`revisit inspect` renders them).
-    int report_candidates = 20;
+    int report_candidates = 8;
     /// Of the closures that reached the acceptance threshold, pages for at most this many (the worst, the
     /// best, an even sample); every accepted closure the reference calls false has one besides. The report's
     /// size then does not grow with the sequence: the others are table rows (`revisit inspect`).
-    int report_closure_pages = 24;
+    int report_closure_pages = 20;
+    int report_map_pages = 30;  ///< at most this many map pages (the maps of the closures at the threshold first)
     bool scan_context = true;    ///< also run the ScanContext baseline when ground truth exists
     bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
 };

@@ -310,6 +310,7 @@ ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string
     ReportConfig report;
     report.strongest_candidates = config.output.report_candidates;
     report.closure_page_budget = config.output.report_closure_pages;
+    report.map_page_budget = config.output.report_map_pages;
     return report;
 }
 

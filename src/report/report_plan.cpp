@@ -76,12 +76,20 @@ ReportPlan PlanReport(const ReportInput& input, const ReportPagePlan& pages) {
             if (plan.closure_has_page[i]) plan.closure_pages.push_back(i);
     }
     if (pages.map_pages) {
-        for (const std::size_t i : plan.closure_pages) {
-            plan.map_pages.push_back(input.closures[i].closure.query_id);
-            plan.map_pages.push_back(input.closures[i].closure.ref_id);
+        // The maps of the closures at the threshold first: a candidate's maps are on its own page too.
+        std::vector<std::size_t> order = plan.closure_pages;
+        std::stable_partition(order.begin(), order.end(), [&](std::size_t i) {
+            return input.closures[i].accepted || input.closures[i].reached_threshold;
+        });
+        const std::size_t budget = static_cast<std::size_t>(std::max(0, pages.map_budget));
+        std::vector<int> chosen;
+        for (const std::size_t i : order) {
+            for (const int id : {input.closures[i].closure.query_id, input.closures[i].closure.ref_id}) {
+                if (chosen.size() < budget && std::find(chosen.begin(), chosen.end(), id) == chosen.end()) chosen.push_back(id);
+            }
         }
-        std::sort(plan.map_pages.begin(), plan.map_pages.end());
-        plan.map_pages.erase(std::unique(plan.map_pages.begin(), plan.map_pages.end()), plan.map_pages.end());
+        std::sort(chosen.begin(), chosen.end());
+        plan.map_pages = std::move(chosen);
     }
     return plan;
 }

@@ -22,11 +22,13 @@ struct ReportPlan {
 struct ReportPagePlan {
     /// Closures that reached the threshold with a page, at most: every one when they are this many or
     /// fewer; else the worst and the best accepted and an even sample (accepted false ones besides).
-    int closure_budget = 24;
+    int closure_budget = 20;
     /// Candidates below the threshold with a page, strongest first (most inliers, then most votes, then earliest).
-    int strongest_candidates = 20;
+    int strongest_candidates = 8;
     bool closure_pages = true;  ///< false: no closure page at all
     bool map_pages = true;      ///< pages for the maps of the closures with a page
+    /// At most this many map pages: the maps of the closures at the threshold first, then of the candidates.
+    int map_budget = 30;
 };
 
 ReportPlan PlanReport(const ReportInput& input, const ReportPagePlan& pages);

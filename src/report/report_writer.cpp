@@ -76,7 +76,7 @@ void CheckClosureIndex(const ReportInput& input, std::size_t index) {
 }
 
 ReportPagePlan PagePlanConfig(const ReportConfig& config) {
-    return {config.closure_page_budget, config.strongest_candidates, config.closure_pages, config.map_pages};
+    return {config.closure_page_budget, config.strongest_candidates, config.closure_pages, config.map_pages, config.map_page_budget};
 }
 
 /// The plan of the report in `report_dir`, for a page rendered alone: links only where the index put pages.
@@ -84,7 +84,7 @@ ReportPlan PlanForSinglePage(const ReportInput& input, const std::filesystem::pa
                              bool* has_index) {
     *has_index = std::filesystem::exists(report_dir / "index.html");
     return *has_index ? PlanReport(input, PagePlanConfig(config))
-                      : PlanReport(input, ReportPagePlan{0, 0, false, false});
+                      : PlanReport(input, ReportPagePlan{0, 0, false, false, 0});
 }
 
 /// One page to render: a closure's (index into input.closures) or a map's (id).

@@ -20,12 +20,13 @@ struct ReportConfig {
     bool closure_pages = true;             ///< pages for closures (index thumbnails link to them); false: table only
     /// Besides every closure that reached the acceptance threshold, pages for this many of the strongest
     /// candidates below it (most inliers); the others are table rows, rendered on demand by `revisit inspect`.
-    int strongest_candidates = 20;
+    int strongest_candidates = 8;
     /// Of the closures that reached the threshold, pages for at most this many: the worst and the best
     /// accepted (by the reference's error, else the registration's RMS) and an even sample of the rest.
     /// Every accepted closure the reference calls false gets a page besides.
-    int closure_page_budget = 24;
+    int closure_page_budget = 20;
     bool map_pages = true;                 ///< pages for the local maps of the rendered closures; the rest: table rows
+    int map_page_budget = 30;              ///< at most this many map pages (those of the closures at the threshold first)
     ReportConfig();
 };
 

@@ -33,7 +33,7 @@ std::set<std::size_t> Pages(const ReportPlan& plan) { return {plan.closure_pages
 
 TEST(PlanReport, FewClosuresAllGetPages) {
     const ReportInput input = ManyClosures(10, 0);
-    EXPECT_EQ(PlanReport(input, ReportPagePlan{24, 20, true, true}).closure_pages.size(), 10u);
+    EXPECT_EQ(PlanReport(input, ReportPagePlan{24, 20, true, true, 30}).closure_pages.size(), 10u);
 }
 
 TEST(PlanReport, ManyClosuresGetTheBudgetWithTheWorstTheBestAndEveryFalseOne) {
@@ -41,7 +41,7 @@ TEST(PlanReport, ManyClosuresGetTheBudgetWithTheWorstTheBestAndEveryFalseOne) {
         ReportInput input = ManyClosures(n, 3 * n);
         input.closures[n / 2].judged_false = true;
         input.closures[n / 2 + 1].judged_false = true;
-        const ReportPlan plan = PlanReport(input, ReportPagePlan{24, 20, true, true});
+        const ReportPlan plan = PlanReport(input, ReportPagePlan{24, 20, true, true, 30});
         const auto pages = Pages(plan);
         // The same size at any length: the budget, the false ones, the strongest weak candidates.
         EXPECT_EQ(pages.size(), 24u + 2u + 20u) << n;
@@ -59,8 +59,16 @@ TEST(PlanReport, ManyClosuresGetTheBudgetWithTheWorstTheBestAndEveryFalseOne) {
             for (const std::size_t i : pages) in_quarter += int(i) >= quarter * n / 4 && int(i) < (quarter + 1) * n / 4;
             EXPECT_GE(in_quarter, 2) << n << " quarter " << quarter;
         }
-        // Map pages: the maps of the closures with a page, nothing else.
-        EXPECT_LE(plan.map_pages.size(), 2 * (24u + 2u));
+        // Map pages: at most the budget, maps of the closures with a page, those at the threshold first.
+        EXPECT_EQ(plan.map_pages.size(), 30u);
+        for (const int id : plan.map_pages) {
+            bool of_a_page = false;
+            for (const std::size_t i : pages) {
+                const bool at_threshold = input.closures[i].accepted || input.closures[i].reached_threshold;
+                of_a_page |= at_threshold && (input.closures[i].closure.query_id == id || input.closures[i].closure.ref_id == id);
+            }
+            EXPECT_TRUE(of_a_page) << "map " << id;
+        }
     }
 }
 
