@@ -154,6 +154,9 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("refinement.min_overlap", &r.min_overlap, "", "accept above this voxel overlap (KISS-SLAM: 0.4)", Range{0, 1});
     s.Add("refinement.min_correspondences", &r.min_correspondences, "", "accept with at least this many", Range{0, 10000000});
     s.Add("refinement.max_rms", &r.max_rms, "m", "accept below this residual RMS", Range{0.001, 100});
+    s.Add("refinement.smear_gate_factor", &r.smear_gate_factor, "",
+          "the default RMS gate rises to this multiple of the median RMS of each map registered onto its predecessor (0: max_rms alone)",
+          Range{0, 100});
     s.Add("refinement.max_correction_translation", &r.max_correction_translation, "m", "reject refinements this far from the 2D guess", Range{0, 1000});
     s.Add("refinement.max_correction_rotation", &r.max_correction_rotation, "rad", "same, rotation", Range{0, 3.2});
     s.AddEnum("graph.loop_loss", &c.graph.loop_loss,

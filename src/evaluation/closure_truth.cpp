@@ -1,19 +1,65 @@
 #include "evaluation/closure_truth.hpp"
 
+#include "core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <set>
 #include <unordered_map>
 
 namespace revisit {
 
+ClosureAnchor AnchorOf(const MapClosureForEval& c, const Poses& T_odom_sensor) {
+    if (c.query_first_scan > c.query_last_scan || c.ref_first_scan > c.ref_last_scan || c.query_last_scan >= T_odom_sensor.size() ||
+        c.ref_last_scan >= T_odom_sensor.size())
+        throw ConfigError("map closure scans " + std::to_string(c.query_first_scan) + ".." + std::to_string(c.query_last_scan) + " / " +
+                          std::to_string(c.ref_first_scan) + ".." + std::to_string(c.ref_last_scan) + " outside the " +
+                          std::to_string(T_odom_sensor.size()) + " odometry poses");
+    // Every scan of both maps in the query map's frame: the query's by the odometry within it, the
+    // reference's by the odometry within the reference map, then the closure.
+    const Eigen::Isometry3d T_query_odom = T_odom_sensor[c.query_first_scan].inverse();
+    const Eigen::Isometry3d T_query_odomref = c.T_query_ref * T_odom_sensor[c.ref_first_scan].inverse();
+    ClosureAnchor anchor{c.query_first_scan, c.ref_first_scan, {}};
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<Eigen::Vector3d> ref_positions;
+    for (std::size_t r = c.ref_first_scan; r <= c.ref_last_scan; ++r)
+        ref_positions.push_back((T_query_odomref * T_odom_sensor[r]).translation());
+    for (std::size_t q = c.query_first_scan; q <= c.query_last_scan; ++q) {
+        const Eigen::Vector3d query_position = (T_query_odom * T_odom_sensor[q]).translation();
+        for (std::size_t k = 0; k < ref_positions.size(); ++k) {
+            const double squared = (query_position - ref_positions[k]).squaredNorm();
+            if (squared < best) {
+                best = squared;
+                anchor.query_scan = q;
+                anchor.ref_scan = c.ref_first_scan + k;
+            }
+        }
+    }
+    anchor.T_query_scan_ref_scan = (T_query_odom * T_odom_sensor[anchor.query_scan]).inverse() * T_query_odomref *
+                                   T_odom_sensor[anchor.ref_scan];
+    return anchor;
+}
+
 ClosureTruth JudgeClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_world_reference,
-                           const ClosureTruthConfig& config) {
+                           const ClosureTruthConfig& config, const Poses& T_odom_sensor) {
     ClosureTruth truth;
     for (const auto& c : closures) {
         ClosureVerdict verdict;
-        verdict.error = ClosureErrorAgainst(T_world_reference, c.query_first_scan, c.ref_first_scan, c.T_query_ref);
+        verdict.first_scan_error = ClosureErrorAgainst(T_world_reference, c.query_first_scan, c.ref_first_scan, c.T_query_ref);
+        verdict.error = verdict.first_scan_error;
+        verdict.query_scan = c.query_first_scan;
+        verdict.ref_scan = c.ref_first_scan;
+        if (!T_odom_sensor.empty()) {
+            // Within each map the closure's pose carries the odometry's error from where the maps
+            // overlap to the map's first scan: judged there it would score the odometry, not the closure.
+            const ClosureAnchor anchor = AnchorOf(c, T_odom_sensor);
+            verdict.query_scan = anchor.query_scan;
+            verdict.ref_scan = anchor.ref_scan;
+            verdict.error = ClosureErrorAgainst(T_world_reference, anchor.query_scan, anchor.ref_scan, anchor.T_query_scan_ref_scan);
+        }
         verdict.is_true = verdict.error.translation <= config.true_translation && verdict.error.yaw_deg <= config.true_rotation_deg;
         (verdict.is_true ? truth.num_true : truth.num_false)++;
         truth.verdicts.push_back(verdict);

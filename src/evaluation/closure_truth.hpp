@@ -1,7 +1,8 @@
 #pragma once
 /// Truth of accepted closures where reference poses exist, and revisit coverage: "were my revisits
 /// found?" (issue 16). A closure is true when its relative pose agrees with the reference relative pose
-/// of the two maps' first scans (ClosureErrorAgainst).
+/// where it was measured: at its anchor, the two scans (one of each map) that lie nearest each other
+/// under the closure's own pose (METHOD.md section 7, "Where a closure is judged").
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -21,8 +22,21 @@ struct ClosureTruthConfig {
 
 struct ClosureVerdict {
     bool is_true = false;
-    ClosurePoseError error;
+    ClosurePoseError error;             ///< at the anchor: decides `is_true`
+    std::size_t query_scan = 0;         ///< the anchor's scan of the query map
+    std::size_t ref_scan = 0;           ///< the anchor's scan of the reference map
+    ClosurePoseError first_scan_error;  ///< at the maps' first scans (adds the odometry's error within each map)
 };
+
+/// A closure's anchor: the scan of each map nearest the other map's scans under the closure's pose
+/// (scan positions from `T_odom_sensor`, the poses the maps were built from, within each map), the first
+/// such pair in scan order; and the closure's relative pose between those two scans.
+struct ClosureAnchor {
+    std::size_t query_scan = 0;
+    std::size_t ref_scan = 0;
+    Eigen::Isometry3d T_query_scan_ref_scan = Eigen::Isometry3d::Identity();
+};
+ClosureAnchor AnchorOf(const MapClosureForEval& closure, const Poses& T_odom_sensor);
 
 struct ClosureTruth {
     std::vector<ClosureVerdict> verdicts;  ///< one per input closure
@@ -30,9 +44,10 @@ struct ClosureTruth {
     std::size_t num_false = 0;
 };
 
-/// Judges each closure (its T_query_ref against the reference poses of the maps' first scans).
+/// Judges each closure at its anchor (AnchorOf over `T_odom_sensor`, the poses the maps were built from,
+/// one per scan). Without them (empty), at the maps' first scans.
 ClosureTruth JudgeClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_world_reference,
-                           const ClosureTruthConfig& config);
+                           const ClosureTruthConfig& config, const Poses& T_odom_sensor = {});
 
 struct RevisitCoverage {
     std::size_t revisit_scans = 0;  ///< scans within revisit_radius of a scan passed >= revisit_gap earlier

@@ -36,6 +36,9 @@ struct RefinementConfig {
     double min_overlap = 0.4;                  ///< accept above this overlap [0..1] (KISS-SLAM: 0.4)
     int min_correspondences = 100;             ///< accept with at least this many final correspondences
     double max_rms = 0.25;                     ///< [m] accept below this point-to-plane RMS of the correspondences
+    /// The RMS gate is at least this multiple of the median RMS with which each map registers onto its
+    /// predecessor (SmearGate: what a true overlap shows under this run's odometry); <= 0: `max_rms` alone.
+    double smear_gate_factor = 1.2;
     double max_correction_translation = 5.0;   ///< [m] a refined pose this far from the guess is a different basin: reject
     double max_correction_rotation = 0.35;     ///< [rad] (20 deg) same, for rotation
     // Uncertainty.

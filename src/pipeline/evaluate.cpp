@@ -149,8 +149,12 @@ json VerificationJson(const RunEvaluation& e, const std::vector<MapClosureForEva
         const auto& verdict = e.truth.verdicts[k];
         closures.push_back({{"method", methods[k]}, {"query_first_scan", RunScan(scans, accepted[k].query_first_scan)},
                             {"ref_first_scan", RunScan(scans, accepted[k].ref_first_scan)},
+                            {"query_anchor_scan", RunScan(scans, verdict.query_scan)},
+                            {"ref_anchor_scan", RunScan(scans, verdict.ref_scan)},
                             {"true", verdict.is_true}, {"translation_error_m", verdict.error.translation},
-                            {"yaw_error_deg", verdict.error.yaw_deg}});
+                            {"yaw_error_deg", verdict.error.yaw_deg},
+                            {"first_scan_translation_error_m", verdict.first_scan_error.translation},
+                            {"first_scan_yaw_error_deg", verdict.first_scan_error.yaw_deg}});
     }
     json per_stage = json::array();  // in chain order
     for (const auto& [stage, count] : e.missed.per_stage) per_stage.push_back({{"stage", MissStageName(stage)}, {"map_pairs", count}});
@@ -264,7 +268,7 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
     e.map_recall = ComputeMapRecall(ranges, density, gt.scan_pairs, map_config);
     std::vector<std::string> methods;
     const auto accepted = Accepted(state, methods);
-    e.truth = JudgeClosures(accepted, state.reference, config.truth);
+    e.truth = JudgeClosures(accepted, state.reference, config.truth, state.odometry);
     for (std::size_t k = 0; k < accepted.size(); ++k) {
         if (methods[k] != "proximity") continue;
         ++(e.truth.verdicts[k].is_true ? e.proximity_true : e.proximity_false);

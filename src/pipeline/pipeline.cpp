@@ -287,6 +287,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     }
     if (planar_scans) planar_scans->Finish();
     for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
+    if (const auto gate = pipeline.RmsGateUpdate()) state.setting_updates.push_back(*gate);
     if (const auto& drift = pipeline.DriftCalibration()) state.setting_updates.push_back(*drift);
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +
                                                std::to_string(accepted));

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "core/se3.hpp"
 #include "evaluation/closure_truth.hpp"
 
@@ -35,6 +36,70 @@ TEST(ClosureTruth, TrueWithinTheThresholdsFalseBeyond) {
     EXPECT_TRUE(truth.verdicts[0].is_true);
     EXPECT_NEAR(truth.verdicts[1].error.translation, 0.6, 1e-9);
     EXPECT_NEAR(truth.verdicts[2].error.yaw_deg, 3.0, 1e-9);
+}
+
+/// A straight street driven twice, one scan per metre: scans 0..99 (the reference map) and 100..199 (the
+/// query map), the second pass starting 60 m further along, so the maps overlap over their last and first
+/// 40 m. `scale`: the odometry's error of travelled distance (1.02: 2% too far).
+Poses StraightStreet(double scale) {
+    Poses poses;
+    for (int k = 0; k < 100; ++k) poses.push_back(PoseFromXYZRPY(scale * k, 0.0, 0.0, 0.0, 0.0, 0.0));
+    for (int k = 0; k < 100; ++k) poses.push_back(PoseFromXYZRPY(scale * (60.0 + k), 3.0, 0.0, 0.0, 0.0, 0.0));
+    return poses;
+}
+
+TEST(ClosureTruth, JudgesAClosureWhereItsMapsOverlapNotAtTheirOrigins) {
+    const Poses reference = StraightStreet(1.0);
+    // The odometry drives each map 2% too far: within a map, the scans overlap the other map 1.2-2 m
+    // from where they are. A registration aligns the overlap (ref scan 80 on query scan 120, the
+    // middle of the overlap): right there, 1.2 m off at the first scans.
+    const Poses odometry = StraightStreet(1.02);
+    MapClosureForEval c;
+    c.query_first_scan = 100;
+    c.query_last_scan = 199;
+    c.ref_first_scan = 0;
+    c.ref_last_scan = 99;
+    const Eigen::Isometry3d T_query_120 = odometry[100].inverse() * odometry[120];
+    const Eigen::Isometry3d T_ref_80 = odometry[0].inverse() * odometry[80];
+    c.T_query_ref = T_query_120 * (reference[120].inverse() * reference[80]) * T_ref_80.inverse();
+
+    const auto at_first_scans = JudgeClosures({c}, reference, ClosureTruthConfig{});
+    EXPECT_EQ(at_first_scans.num_false, 1u);
+    EXPECT_NEAR(at_first_scans.verdicts[0].error.translation, 1.2, 1e-6);
+
+    const auto anchored = JudgeClosures({c}, reference, ClosureTruthConfig{}, odometry);
+    ASSERT_EQ(anchored.num_true, 1u);
+    const ClosureVerdict& v = anchored.verdicts[0];
+    // The anchor is found from the odometry and the closure alone: the first pair of scans (one of each
+    // map) that the closure lays on each other, here where the maps overlap.
+    EXPECT_GE(v.ref_scan, 60u);
+    EXPECT_LE(v.query_scan, 139u);
+    EXPECT_LT(v.error.translation, 0.5);
+    EXPECT_NEAR(v.first_scan_error.translation, 1.2, 1e-6);
+
+    // A closure 1 m off where the maps overlap stays false wherever it is judged.
+    MapClosureForEval off = c;
+    off.T_query_ref = PoseFromXYZRPY(1.0, 0.0, 0.0, 0.0, 0.0, 0.0) * c.T_query_ref;
+    const auto wrong = JudgeClosures({off}, reference, ClosureTruthConfig{}, odometry);
+    EXPECT_EQ(wrong.num_false, 1u);
+    EXPECT_NEAR(wrong.verdicts[0].error.translation, 1.0, 0.05);
+}
+
+TEST(ClosureTruth, AnchorIsThePairOfScansTheClosureLaysNearestEachOther) {
+    const Poses poses = StraightStreet(1.0);
+    MapClosureForEval c;
+    c.query_first_scan = 100;
+    c.query_last_scan = 199;
+    c.ref_first_scan = 0;
+    c.ref_last_scan = 99;
+    c.T_query_ref = poses[100].inverse() * poses[0];
+    const ClosureAnchor anchor = AnchorOf(c, poses);
+    // Query scan 100 (x = 60, y = 3) lies 3 m beside reference scan 60, the nearest pair; the first in scan order.
+    EXPECT_EQ(anchor.query_scan, 100u);
+    EXPECT_EQ(anchor.ref_scan, 60u);
+    EXPECT_TRUE(anchor.T_query_scan_ref_scan.isApprox(poses[100].inverse() * poses[60], 1e-9));
+    c.ref_last_scan = 200;
+    EXPECT_THROW(AnchorOf(c, poses), ConfigError);
 }
 
 TEST(RevisitCoverage, CountsRevisitingScansInMapsJoinedByATrueClosure) {

@@ -48,7 +48,7 @@ TEST(MissedRevisits, NamesTheStageThatLostEachOverlappingPair) {
                       Record(8, 3, true, true, false, "inconsistent with other closures (PCM)"),
                       Record(9, 4, true, true, true, "")};
     ClosureTruth truth;
-    truth.verdicts = {ClosureVerdict{true, {}}};  // the one accepted closure, 9 -> 4, is true
+    truth.verdicts = {ClosureVerdict{true, {}, 0, 0, {}}};  // the one accepted closure, 9 -> 4, is true
     const MissedRevisits result = FindMissedRevisits(state, gt, truth, 10, 10);
     EXPECT_EQ(result.overlapping_pairs, 8u);
     EXPECT_EQ(result.found_pairs, 1u);
@@ -82,7 +82,7 @@ TEST(MissedRevisits, NamesTheStageThatLostEachOverlappingPair) {
         record.method = "proximity";
         with_proximity.closures.push_back(record);
         ClosureTruth both = truth;
-        both.verdicts.push_back(ClosureVerdict{true, {}});
+        both.verdicts.push_back(ClosureVerdict{true, {}, 0, 0, {}});
         const MissedRevisits joined = FindMissedRevisits(with_proximity, gt, both, 10, 10);
         EXPECT_EQ(joined.found_pairs, 2u);
         EXPECT_EQ(joined.detector.accepted, 1u);
