@@ -86,7 +86,9 @@ struct OutputConfig {
 /// The occupancy grid every run writes (occupancy.pgm, occupancy.yaml: src/exports/run_occupancy.hpp).
 struct OccupancyConfig {
     double resolution = 0.0;          ///< [m per cell]; 0: 0.05 for 2D lasers, the stored maps' voxel for 3D runs
-    int max_cells_per_side = 8192;    ///< a larger extent doubles the cell until it fits (occupancy.yaml says which)
+    /// A larger extent doubles the cell until it fits (occupancy.yaml says which): the grid then holds at
+    /// most 16.8 M cells (67 MB of counts, a 17 MB image) however long the drive.
+    int max_cells_per_side = 4096;
     /// A cell observed this often as a ray's end, of all rays that ended in or crossed it, is occupied;
     /// below, it is free. Walls seen at a grazing angle are also crossed by their neighbours' rays.
     double occupied_share = 0.25;
