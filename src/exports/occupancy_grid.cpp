@@ -1,6 +1,7 @@
 #include "exports/occupancy_grid.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -104,8 +105,18 @@ void WritePgm(std::ostream& out, const OccupancyGrid& grid, double occupied_shar
 void WriteMapYaml(std::ostream& out, const OccupancyGrid& grid, const std::string& image_name) {
     // Loaders compute occ = (255 - pixel) / 255 and call a cell occupied above occupied_thresh, free
     // below free_thresh: 0 -> 1.0 occupied, 254 -> 0.004 free, 205 -> 0.196 (just above 0.196) unknown.
+    // A name of plain characters stays plain, as map_saver writes it; any other is a quoted YAML string.
+    const bool plain = !image_name.empty() && std::all_of(image_name.begin(), image_name.end(), [](unsigned char c) {
+        return std::isalnum(c) || c == '.' || c == '_' || c == '-' || c == '/';
+    });
+    std::string quoted = "\"";
+    for (const char c : image_name) {
+        if (c == '"' || c == '\\') quoted += '\\';
+        quoted += c;
+    }
+    quoted += '"';
     out << std::setprecision(9);
-    out << "image: " << image_name << '\n'
+    out << "image: " << (plain ? image_name : quoted) << '\n'
         << "mode: trinary\n"
         << "resolution: " << grid.resolution() << '\n'
         << "origin: [" << grid.origin().x() << ", " << grid.origin().y() << ", 0.0]\n"

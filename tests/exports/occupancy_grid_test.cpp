@@ -122,6 +122,13 @@ TEST(OccupancyGrid, WallsAreOneCellThick) {
     }
 }
 
+TEST(OccupancyGrid, AnImageNameWithYamlSyntaxIsQuoted) {
+    const OccupancyGrid grid(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)), 0.5);
+    std::ostringstream yaml;
+    WriteMapYaml(yaml, grid, "lab: \"A\" #2.pgm");
+    EXPECT_EQ(YAML::Load(yaml.str())["image"].as<std::string>(), "lab: \"A\" #2.pgm");
+}
+
 TEST(OccupancyGrid, ExtentBeyondTheCellLimitCoarsensTheResolution) {
     const Eigen::AlignedBox2d extent(Eigen::Vector2d(0, 0), Eigen::Vector2d(1000.0, 10.0));
     EXPECT_DOUBLE_EQ(FittingResolution(extent, 0.05, 8192), 0.2);  // 0.1 needs 10,001 cells
