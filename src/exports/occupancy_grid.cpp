@@ -10,6 +10,14 @@
 #include "core/error.hpp"
 
 namespace revisit {
+namespace {
+
+/// Counts saturate: a cell seen that often keeps its share.
+void Count(std::uint16_t& count) {
+    if (count < std::numeric_limits<std::uint16_t>::max()) ++count;
+}
+
+}  // namespace
 
 OccupancyGrid::OccupancyGrid(const Eigen::AlignedBox2d& extent, double resolution) : resolution_(resolution) {
     if (!(resolution > 0.0)) throw ConfigError("occupancy.resolution must be positive");
@@ -32,16 +40,12 @@ bool OccupancyGrid::Cell(const Eigen::Vector2d& point, int& x, int& y) const {
 
 void OccupancyGrid::AddHit(const Eigen::Vector2d& point) {
     int x = 0, y = 0;
-    if (!Cell(point, x, y)) return;
-    auto& count = hits_[Index(x, y)];
-    if (count < std::numeric_limits<std::uint16_t>::max()) ++count;
+    if (Cell(point, x, y)) Count(hits_[Index(x, y)]);
 }
 
 void OccupancyGrid::AddMiss(const Eigen::Vector2d& point) {
     int x = 0, y = 0;
-    if (!Cell(point, x, y)) return;
-    auto& count = misses_[Index(x, y)];
-    if (count < std::numeric_limits<std::uint16_t>::max()) ++count;
+    if (Cell(point, x, y)) Count(misses_[Index(x, y)]);
 }
 
 void OccupancyGrid::AddRay(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
@@ -57,10 +61,7 @@ void OccupancyGrid::AddRay(const Eigen::Vector2d& from, const Eigen::Vector2d& t
     const long sx = x < x1 ? 1 : -1, sy = y < y1 ? 1 : -1;
     long error = dx + dy;
     while (x != x1 || y != y1) {
-        if (x >= 0 && y >= 0 && x < width_ && y < height_) {
-            auto& count = misses_[Index(int(x), int(y))];
-            if (count < std::numeric_limits<std::uint16_t>::max()) ++count;
-        }
+        if (x >= 0 && y >= 0 && x < width_ && y < height_) Count(misses_[Index(int(x), int(y))]);
         const long twice = 2 * error;
         if (twice >= dy) {
             error += dy;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 #include <unordered_map>
 #include <utility>
@@ -70,10 +69,15 @@ class LocalGround {
             if (it == lowest_.end() || q.z() < it->second) lowest_[key] = q.z();
         }
     }
-    /// Whether `q` lies within one cell of `cells`' (the cells of the sensor's path).
-    bool Beside(const Eigen::Vector3d& q, const std::vector<std::pair<long, long>>& cells) const {
+    /// Whether `q` lies within one cell of `sorted_cells`' (the cells of the sensor's path, sorted).
+    bool Beside(const Eigen::Vector3d& q, const std::vector<std::pair<long, long>>& sorted_cells) const {
         const auto [x, y] = Key(q);
-        return std::any_of(cells.begin(), cells.end(), [&](const auto& c) { return std::labs(c.first - x) <= 1 && std::labs(c.second - y) <= 1; });
+        for (long dx = -1; dx <= 1; ++dx) {
+            for (long dy = -1; dy <= 1; ++dy) {
+                if (std::binary_search(sorted_cells.begin(), sorted_cells.end(), std::pair<long, long>{x + dx, y + dy})) return true;
+            }
+        }
+        return false;
     }
     std::pair<long, long> Key(const Eigen::Vector3d& q) const {
         return {static_cast<long>(std::floor(q.x() / cell_)), static_cast<long>(std::floor(q.y() / cell_))};
@@ -112,7 +116,7 @@ struct MapHeights {
 /// centimetres. Points within that thickness are ground, never obstacles.
 OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
     const OccupancyConfig& o = config.occupancy;
-    std::optional<Eigen::Isometry3d> T_level_world;
+    std::optional<Eigen::Isometry3d> T_level_world;  ///< set by the first map, the same in both passes
     const auto measure = [&](const MapRecordSummary& map) {
         const auto points = ReadMapPoints(run, map.id);
         const GroundAlignment ground = AlignGround(points);
@@ -148,7 +152,6 @@ OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const P
     }
     const double wanted = o.resolution > 0.0 ? o.resolution : config.output.map_voxel;
     OccupancyGrid grid(extent, FittingResolution(extent, wanted, o.max_cells_per_side));
-    T_level_world.reset();
     for (const auto& map : state.maps) {
         const MapHeights heights = measure(map);
         const double ground = std::max(o.ground_tolerance, heights.ground_thickness);

@@ -308,9 +308,9 @@ ReportConfig RunReportConfig(const RunFolder& run, const std::vector<std::string
         LoadConfig(fs::exists(run.config()) ? std::vector<std::string>{run.config().string()} : std::vector<std::string>{},
                    overrides);
     ReportConfig report;
-    report.strongest_candidates = config.output.report_candidates;
-    report.closure_page_budget = config.output.report_closure_pages;
-    report.map_page_budget = config.output.report_map_pages;
+    report.pages.strongest_candidates = config.output.report_candidates;
+    report.pages.closure_budget = config.output.report_closure_pages;
+    report.pages.map_budget = config.output.report_map_pages;
     return report;
 }
 

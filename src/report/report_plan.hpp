@@ -18,7 +18,7 @@ struct ReportPlan {
     bool MapHasPage(int map_id) const;
 };
 
-/// Which pages a report gets (ReportConfig's fields of the same meaning).
+/// Which pages a report gets (ReportConfig::pages; the run's output.report_* keys).
 struct ReportPagePlan {
     /// Closures that reached the threshold with a page, at most: every one when they are this many or
     /// fewer; else the worst and the best accepted and an even sample (accepted false ones besides).

@@ -75,15 +75,11 @@ void CheckClosureIndex(const ReportInput& input, std::size_t index) {
                                 std::to_string(input.closures.size()) + " closures)");
 }
 
-ReportPagePlan PagePlanConfig(const ReportConfig& config) {
-    return {config.closure_page_budget, config.strongest_candidates, config.closure_pages, config.map_pages, config.map_page_budget};
-}
-
 /// The plan of the report in `report_dir`, for a page rendered alone: links only where the index put pages.
 ReportPlan PlanForSinglePage(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config,
                              bool* has_index) {
     *has_index = std::filesystem::exists(report_dir / "index.html");
-    return *has_index ? PlanReport(input, PagePlanConfig(config))
+    return *has_index ? PlanReport(input, config.pages)
                       : PlanReport(input, ReportPagePlan{0, 0, false, false, 0});
 }
 
@@ -150,7 +146,7 @@ std::filesystem::path WriteMapPairPage(const ReportInput& input, int query_map_i
 ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& report_dir, const ReportConfig& config,
                         const ReportProgress& progress) {
     std::filesystem::create_directories(report_dir);
-    const ReportPlan plan = PlanReport(input, PagePlanConfig(config));
+    const ReportPlan plan = PlanReport(input, config.pages);
 
     // Pages first, in parallel: each writes only its own files; thumbnails and counts land in their slots.
     std::vector<PageTask> tasks;
@@ -235,9 +231,9 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
     index.Heading("Closure pages", 2, "closures");
     index.Paragraph(std::to_string(plan.closure_pages.size()) + " of " + std::to_string(input.closures.size()) +
                     " candidates have a page: of those that reached the acceptance threshold, every one when they are " +
-                    std::to_string(config.closure_page_budget) +
+                    std::to_string(config.pages.closure_budget) +
                     " or fewer, else every false one, the worst, the best and an even sample; and the " +
-                    std::to_string(config.strongest_candidates) +
+                    std::to_string(config.pages.strongest_candidates) +
                     " strongest below it. Any other: `" + input.inspect_command + " --closure N`.");
     std::string thumbs = "<div class=\"thumbs\">\n";
     for (std::size_t t = 0; t < tasks.size(); ++t) {

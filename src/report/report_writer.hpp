@@ -5,6 +5,7 @@
 #include "render/density_pictures.hpp"
 #include "render/scene_common.hpp"
 #include "report/report_input.hpp"
+#include "report/report_plan.hpp"
 
 #include <filesystem>
 #include <functional>
@@ -17,16 +18,9 @@ struct ReportConfig {
     DensityPictureConfig density_pictures;
     DensityImageConfig density;            ///< when density images are computed from maps (no load_density_image)
     int thumbnail_width = 240;             ///< [px] the one thumbnail size (closures and maps)
-    bool closure_pages = true;             ///< pages for closures (index thumbnails link to them); false: table only
-    /// Besides every closure that reached the acceptance threshold, pages for this many of the strongest
-    /// candidates below it (most inliers); the others are table rows, rendered on demand by `revisit inspect`.
-    int strongest_candidates = 8;
-    /// Of the closures that reached the threshold, pages for at most this many: the worst and the best
-    /// accepted (by the reference's error, else the registration's RMS) and an even sample of the rest.
-    /// Every accepted closure the reference calls false gets a page besides.
-    int closure_page_budget = 20;
-    bool map_pages = true;                 ///< pages for the local maps of the rendered closures; the rest: table rows
-    int map_page_budget = 30;              ///< at most this many map pages (those of the closures at the threshold first)
+    /// Which closures and maps get a page (report_plan.hpp); the others are table rows, rendered on
+    /// demand by `revisit inspect`.
+    ReportPagePlan pages;
     ReportConfig();
 };
 

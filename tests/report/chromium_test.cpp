@@ -94,7 +94,7 @@ class ChromiumReport : public ::testing::Test {
         ReportConfig config;
         config.overview.width = 800;
         config.overview.height = 600;
-        config.strongest_candidates = 1;
+        config.pages.strongest_candidates = 1;
         const ReportInput input = MakeSyntheticRun(run);
         WriteReport(input, dir_->path() / "report", config);
         // A candidate without a page, rendered on demand as `revisit inspect --closure` does.

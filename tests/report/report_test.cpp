@@ -180,7 +180,7 @@ TEST(WriteReport, IsTheSameAtAnyThreadCount) {
     run.weak_candidates = 40;
     const ReportInput input = MakeSyntheticRun(run);
     ReportConfig config = SmallPictures();
-    config.strongest_candidates = 3;
+    config.pages.strongest_candidates = 3;
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
         WriteReport(input, a.path(), config);
@@ -207,7 +207,7 @@ TEST(WriteReport, HundredsOfCandidatesGetTableRowsAndPagesOnlyForTheBoundedSet) 
     run.weak_candidates = 400;
     const ReportInput input = MakeSyntheticRun(run);
     ReportConfig config = SmallPictures();
-    config.strongest_candidates = 4;
+    config.pages.strongest_candidates = 4;
     std::vector<std::size_t> progress, totals;
     const ReportStats stats = WriteReport(input, dir.path(), config, [&](std::size_t done, std::size_t total) {
         progress.push_back(done);
