@@ -10,8 +10,8 @@
 
 #include "core/voxel.hpp"
 #include "optimization/map_overlap.hpp"
-#include "optimization/smear_gate.hpp"
 #include "optimization/trajectory_correction.hpp"
+#include "pipeline/refinement_gate.hpp"
 #include "pipeline/scan_trail.hpp"
 
 namespace revisit {
@@ -54,15 +54,6 @@ constexpr double kConsecutiveRevisitShare = 0.1;
 
 bool ConsecutiveRevisitsChecked(const PipelineConfig& config) { return config.odometry.planar && !config.local_map.carry_over; }
 
-/// The smear gate's factor is the default RMS gate's ratio to what consecutive 3D street maps show under
-/// good odometry (METHOD.md section 7). A gate chosen otherwise (2D lasers: two map voxels; a preset;
-/// --set) has its own calibration and stays fixed.
-double SmearGateFactor(const PipelineConfig& config) {
-    const bool default_gate = !config.odometry.planar && config.refinement.max_rms == RefinementConfig{}.max_rms &&
-                              config.explicit_keys.count("refinement.max_rms") == 0;
-    return default_gate ? config.refinement.smear_gate_factor : 0.0;
-}
-
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -71,7 +62,7 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 
 ClosurePipeline::ClosurePipeline(const PipelineConfig& config, std::unique_ptr<MapPointStore> store)
     : config_(config), store_(store ? std::move(store) : MakeMemoryMapStore()), mapper_(config.local_map),
-      detector_(SweepConfig(config.detector)), smear_gate_(SmearGateFactor(config)),
+      detector_(SweepConfig(config.detector)), refinement_gate_(config),
       consistency_(config.consistency, OdometryNoise{config.graph_noise.odometry_translation_per_m,
                                                      config.graph_noise.odometry_rotation_per_m}) {
     if (config.output.elevation_ablation) {
@@ -155,13 +146,10 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     corrected_nodes_.push_back(corrected_nodes_.empty() ? map.T_world_map
                                                         : corrected_nodes_.back() * nodes_[nodes_.size() - 2].inverse() *
                                                               map.T_world_map);
-    if (smear_gate_.active() && map.id > 0 && nodes_.size() >= 2) {
+    if (refinement_gate_.active() && map.id > 0 && nodes_.size() >= 2) {
         start = std::chrono::steady_clock::now();
-        const auto consecutive = RegisterConsecutive(ToDouble(store_->Get(map.id - 1)), ToDouble(stored),
-                                                     nodes_.back().inverse() * nodes_[nodes_.size() - 2], config_.refinement);
-        smear_gate_.Add(consecutive, config_.refinement.min_correspondences);
-        if (!rms_gate_raised_at_ && smear_gate_.MaxRms(config_.refinement.max_rms) > config_.refinement.max_rms)
-            rms_gate_raised_at_ = map.first_scan;
+        refinement_gate_.AddConsecutive(ToDouble(store_->Get(map.id - 1)), ToDouble(stored),
+                                        nodes_.back().inverse() * nodes_[nodes_.size() - 2], map.first_scan);
         Time("refinement.consecutive", MillisecondsSince(start));
     }
 
@@ -187,22 +175,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     return update;
 }
 
-std::optional<SettingUpdate> ClosurePipeline::RmsGateUpdate() const {
-    const double configured = config_.refinement.max_rms;
-    const double gate = smear_gate_.MaxRms(configured);
-    if (!(gate > configured)) return std::nullopt;
-    char reason[160];
-    std::snprintf(reason, sizeof(reason), "consecutive maps register at a median RMS of %.3g m (x %.3g): the odometry smears the maps",
-                  smear_gate_.MedianRms(), config_.refinement.smear_gate_factor);
-    // The scan of the first map verified above the configured gate; the value is the final one.
-    return SettingUpdate{rms_gate_raised_at_.value_or(0), "refinement.max_rms", configured, gate, reason};
-}
-
-RefinementConfig ClosurePipeline::GatedRefinement() const {
-    RefinementConfig gated = config_.refinement;
-    gated.max_rms = smear_gate_.MaxRms(config_.refinement.max_rms);
-    return gated;
-}
+std::optional<SettingUpdate> ClosurePipeline::RmsGateUpdate() const { return refinement_gate_.Update(); }
 
 double ClosurePipeline::FootprintCell() const {
     return std::max(config_.local_map.split_distance / 20.0, config_.output.map_voxel);
@@ -251,7 +224,7 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
     // there yet (drift no closure reached, or maps the odometry bent), and one started from it locks as
     // readily onto a wrong alignment (measured: every false one on the simulated walks and rooms moved it
     // 2-6 deg, the true ones on the real walk under 0.3 deg). The estimate's height is its own: no search.
-    RefinementConfig confirm = GatedRefinement();
+    RefinementConfig confirm = refinement_gate_.Refinement();
     confirm.max_correction_translation = std::min(confirm.max_correction_translation, config_.consistency.closure_sigma_translation);
     confirm.max_correction_rotation =
         std::min(confirm.max_correction_rotation, config_.consistency.closure_sigma_rotation_deg * M_PI / 180.0);
@@ -303,7 +276,7 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
         return record;
     }
     // Closures are verified as their query map is added: it is the detector's newest map.
-    Refine(record, query_points, detector_.maps().back(), GatedRefinement(), true);
+    Refine(record, query_points, detector_.maps().back(), refinement_gate_.Refinement(), true);
     return record;
 }
 

@@ -13,8 +13,8 @@
 #include "closures/map_point_store.hpp"
 #include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
-#include "optimization/smear_gate.hpp"
 #include "config/config.hpp"
+#include "pipeline/refinement_gate.hpp"
 #include "pipeline/scan_trail.hpp"
 #include "runfolder/run_state.hpp"
 
@@ -75,8 +75,6 @@ class ClosurePipeline {
     std::size_t AddProximityClosures(bool from_odometry = false);
     /// Before the final optimization: with few consistent closures, the odometry's own overlays check them.
     void CheckAgainstOdometryOverlays();
-    /// The refinement's settings with the RMS gate this run's odometry calls for (SmearGate).
-    RefinementConfig GatedRefinement() const;
     double FootprintCell() const;  ///< [m] ground cells of the maps' footprints
     /// Whether map `query` returns to where its predecessor went under the pose estimate `T_world_map`:
     /// a scan of each within a tenth of a map's length of the other, a map's length apart in travel.
@@ -98,8 +96,7 @@ class ClosurePipeline {
     std::unique_ptr<MapPointStore> store_;
     LocalMapper mapper_;
     ClosureDetector detector_;
-    SmearGate smear_gate_;  ///< the RMS gate from consecutive maps' registrations
-    std::optional<std::size_t> rms_gate_raised_at_;  ///< first scan of the first map verified above max_rms
+    RefinementGate refinement_gate_;  ///< the RMS gate from consecutive maps' registrations
     std::optional<ClosureDetector> elevation_detector_;
     std::vector<MapRecordSummary> maps_;
     std::vector<ClosureRecord> closures_;

@@ -40,7 +40,7 @@ struct ClosureRecord {
     double graph_weight = 0.0;       ///< final robust weight in the pose graph (verified closures only)
 };
 
-/// A setting changed mid-run because the data changed (issue 14: "updated as the sequence unfolds").
+/// A setting changed mid-run because the data changed ("updated as the sequence unfolds").
 struct SettingUpdate {
     std::size_t scan = 0;  ///< position of the first scan processed with the new value
     std::string key;       ///< e.g. "odometry.max_range"
