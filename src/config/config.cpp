@@ -55,6 +55,8 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
           "2D lasers: start the ICP from a correlative scan match (every frame without wheel odometry; with it, frames whose ICP failed)");
     s.Add("odometry.correlative_window", &o.correlative_window, "m", "translations the correlative match searches each way", Range{0.01, 100});
     s.Add("odometry.correlative_angular_window_deg", &o.correlative_angular_window_deg, "deg", "rotations the correlative match searches each way", Range{0, 180});
+    s.Add("odometry.correlative_heading_prior", &o.correlative_heading_prior, "",
+          "2D lasers without wheel odometry: the correlative match prefers poses along the platform's heading (a wheeled platform drives forward; a corridor's aliases lie behind and beside)");
     s.Add("odometry.map_travel_horizon", &o.map_travel_horizon, "m",
           "the map keeps only voxels a scan saw within this much travel, so a scan registers to the scans just before and not to a drifted earlier pass (0 = every voxel within range, KISS-ICP)",
           Range{0, 1e6});

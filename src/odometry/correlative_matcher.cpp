@@ -74,6 +74,37 @@ struct Candidate {
 /// Smallest |d| over the integers [lo, hi].
 int MinAbs(int lo, int hi) { return lo > 0 ? lo : (hi < 0 ? -hi : 0); }
 
+/// Squared distance from `p` to the ray from `o` along the unit vector `u`.
+double RayDistance2(const Eigen::Vector2d& p, const Eigen::Vector2d& o, const Eigen::Vector2d& u) {
+    const Eigen::Vector2d d = p - o;
+    const double t = std::max(0.0, d.dot(u));
+    return (d - t * u).squaredNorm();
+}
+
+/// Squared distance from the ray (o, u) to the box [lo, hi]: 0 when it crosses the box, else attained
+/// at the ray's origin or at a corner of the box (two disjoint convex sets in the plane).
+double RayBoxDistance2(const Eigen::Vector2d& o, const Eigen::Vector2d& u, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+    double t_min = 0.0, t_max = std::numeric_limits<double>::infinity();
+    bool crosses = true;
+    for (int k = 0; k < 2 && crosses; ++k) {
+        if (std::abs(u[k]) < 1e-12) {
+            crosses = o[k] >= lo[k] && o[k] <= hi[k];
+            continue;
+        }
+        double t0 = (lo[k] - o[k]) / u[k], t1 = (hi[k] - o[k]) / u[k];
+        if (t0 > t1) std::swap(t0, t1);
+        t_min = std::max(t_min, t0);
+        t_max = std::min(t_max, t1);
+        crosses = t_min <= t_max;
+    }
+    if (crosses) return 0.0;
+    const Eigen::Vector2d nearest = o.cwiseMax(lo).cwiseMin(hi);
+    double best = (o - nearest).squaredNorm();
+    for (const Eigen::Vector2d& corner : {lo, hi, Eigen::Vector2d(lo.x(), hi.y()), Eigen::Vector2d(hi.x(), lo.y())})
+        best = std::min(best, RayDistance2(corner, o, u));
+    return best;
+}
+
 }  // namespace
 
 CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& reference_in_world,
@@ -153,6 +184,15 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
     const double full = 255.0 * static_cast<double>(n);
     const double penalty_scale = config.prior_weight * full;
     const double prior_cells = config.prior_distance > 0.0 ? config.prior_distance / resolution : static_cast<double>(window);
+    // The heading ray in cells from the centre, its direction per rotation (the chord of the turn).
+    const Eigen::Vector2d heading_origin = (config.heading_origin - centre) / resolution;
+    std::vector<Eigen::Vector2d> chord(static_cast<std::size_t>(2 * angles + 1));
+    for (int a = -angles; a <= angles; ++a) {
+        const double turn = std::remainder(yaw0 + a * angle_step - config.heading_yaw, 2.0 * M_PI);
+        const double heading = config.heading_yaw + 0.5 * turn;
+        chord[static_cast<std::size_t>(a + angles)] = Eigen::Vector2d(std::cos(heading), std::sin(heading));
+    }
+    const double heading_scale = config.heading_prior ? config.prior_weight * full / (prior_cells * prior_cells) : 0.0;
     const auto bound = [&](int level, int angle, int dx, int dy) {
         const int* c = &cells[static_cast<std::size_t>(angle + angles) * n * 2];
         long sum = 0;
@@ -161,7 +201,12 @@ CorrelativeMatch MatchCorrelative2D(const std::vector<Eigen::Vector3d>& referenc
         const double mx = MinAbs(dx, std::min(dx + span, window)), my = MinAbs(dy, std::min(dy + span, window));
         const double f = 0.5 * (mx * mx + my * my) / (prior_cells * prior_cells) +
                          (angles > 0 ? static_cast<double>(angle) * angle / (static_cast<double>(angles) * angles) : 0.0);
-        return static_cast<double>(sum) - 0.5 * penalty_scale * f;
+        double off_heading = 0.0;
+        if (heading_scale > 0.0) {
+            const Eigen::Vector2d lo(dx, dy), hi(std::min(dx + span, window), std::min(dy + span, window));
+            off_heading = heading_scale * RayBoxDistance2(heading_origin, chord[static_cast<std::size_t>(angle + angles)], lo, hi);
+        }
+        return static_cast<double>(sum) - 0.5 * penalty_scale * f - off_heading;
     };
     const auto by_bound = [](const Candidate& a, const Candidate& b) {
         if (a.bound != b.bound) return a.bound > b.bound;

@@ -29,6 +29,14 @@ struct CorrelativeMatchConfig {
     /// [cells] sigma of the Gaussian a reference point is rasterized with. A best pose half a cell off
     /// the grid loses exp(-1 / (8 sigma^2)) of its score: 12% at 1 cell, 3% at 2 cells.
     double kernel_sigma_cells = 1.0;
+    /// The platform drives along its heading: a candidate also loses prior_weight of the best score at
+    /// `prior_distance` off the ray from `heading_origin` along its chord heading (quadratic in that
+    /// distance). A candidate with yaw y turned from `heading_yaw` to y, and over a turn a wheeled
+    /// platform's sensor moves along the arc's chord: halfway between the two headings. Backward and
+    /// sideways poses pay; forward ones, at any distance, do not.
+    bool heading_prior = false;
+    Eigen::Vector2d heading_origin = Eigen::Vector2d::Zero();  ///< [m] where the ray starts (the last pose)
+    double heading_yaw = 0.0;                                  ///< [rad] the last pose's heading
 };
 
 struct CorrelativeMatch {

@@ -173,6 +173,13 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const VoxelHashMap& map, const
     // The retry over twice the window keeps the pull's strength per metre: it adds poses, it does not
     // weaken the tie-break between a corridor's equal peaks.
     match_config.prior_distance = config_.correlative_window;
+    // Without wheel odometry, the heading is what is known of the motion: along a corridor the poses one
+    // door spacing back or sideways explain the scan as well as the true step forward (orebro).
+    if (fine && config_.correlative_heading_prior) {
+        match_config.heading_prior = true;
+        match_config.heading_origin = last_pose.translation().head<2>();
+        match_config.heading_yaw = std::atan2(last_pose.linear()(1, 0), last_pose.linear()(0, 0));
+    }
     // Key frames turn one way and then back: the rotations searched span both the predicted turn and
     // none, and the window beyond either.
     const double predicted_turn = std::atan2(delta.linear()(1, 0), delta.linear()(0, 0));

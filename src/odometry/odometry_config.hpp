@@ -61,6 +61,11 @@ struct OdometryConfig {
     bool correlative_start = true;
     double correlative_window = 1.5;               ///< [m] translations searched each way (x and y)
     double correlative_angular_window_deg = 45.0;  ///< [deg] rotations searched each way
+    /// Without wheel odometry: the match also pulls towards the ray along the platform's heading (the
+    /// chord of the turn): a pose one correlative_window off that ray loses 5% of the best score, the
+    /// matcher's prior_weight. A wheeled platform drives forward; a corridor's aliases a door spacing
+    /// back or sideways otherwise win on the ~1% their scores differ by (orebro, docs/method.md).
+    bool correlative_heading_prior = true;
     /// [m] the map keeps only voxels a scan saw within this much travel (0: every voxel within range,
     /// KISS-ICP). An earlier pass of the same place lies in the map where the odometry's drift put it,
     /// and a scan that sees it again registers to that copy instead of to the scans just before.
