@@ -227,8 +227,9 @@ std::vector<std::size_t> ClosureDetector::SelectCandidates(const std::vector<int
         return votes[a] > votes[b];
     });
     if (config_.selection == CandidateSelection::kTopHalf) {
-        // Paper: the top N by votes, N = half the maps in the database.
-        eligible.resize(std::min(eligible.size(), std::max<std::size_t>(1, records_.size() / 2)));
+        // Paper: the top N by votes, N = half the maps in the database (here never below min_candidates).
+        const std::size_t half = std::max<std::size_t>(1, records_.size() / 2);
+        eligible.resize(std::min(eligible.size(), std::max(half, std::size_t(std::max(1, config_.min_candidates)))));
     }
     std::vector<std::size_t> candidates;
     for (std::size_t i : eligible) {

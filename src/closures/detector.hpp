@@ -27,6 +27,10 @@ struct ClosureDetectorConfig {
     FeatureConfig features;
     HammingTreeConfig tree;
     CandidateSelection selection = CandidateSelection::kTopHalf;
+    /// Beyond the paper: the top half keeps at least this many maps. Half of a short drive's database is
+    /// a handful of maps, and a revisit seen from another direction (a crossing) can rank just below it
+    /// (the ScanContext baseline verifies 10 candidates). 1: the paper's rule.
+    int min_candidates = 10;
     int min_matches = 25;          ///< paper: 25 (10 for small-FOV sensors); later code: 3 (more than 2)
     int skip_recent_maps = 3;      ///< never compare with the last maps of the same session
     /// Beyond the paper: when > 0, skip instead the maps of the same session whose travel ends less than
@@ -48,6 +52,7 @@ struct ClosureDetectorConfig {
         ClosureDetectorConfig config;
         config.rematch = false;
         config.rank_by_nearest = false;
+        config.min_candidates = 1;
         return config;
     }
     /// The authors' later public code (v2.x) where it differs from the paper.

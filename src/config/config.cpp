@@ -125,6 +125,7 @@ void BindFeaturesAndMatching(ConfigSchema& s, PipelineConfig& c) {
     auto& d = c.detector;
     s.AddEnum("detector.selection", &d.selection, {{"top_half", CandidateSelection::kTopHalf}, {"all_above_min", CandidateSelection::kAllAboveMin}},
               "candidates: paper top half by votes, or later code all maps with enough matches");
+    s.Add("detector.min_candidates", &d.min_candidates, "", "beyond the paper: the top half keeps at least this many maps (1: the paper's rule)", Range{1, 100000});
     s.Add("detector.min_matches", &d.min_matches, "", "matches a candidate needs (paper: 25; small FOV 10; later 3)", Range{1, 100000});
     s.Add("detector.skip_recent_maps", &d.skip_recent_maps, "", "never compare with the last maps (paper: 3)", Range{0, 100000});
     s.Add("detector.skip_recent_travel", &d.skip_recent_travel, "m", "beyond the paper: skip by travelled distance instead; 0 = by count", Range{0, 1e6});

@@ -85,5 +85,32 @@ TEST(ClosureDetectorSim, NoClosureBetweenUnrelatedPlaces) {
     }
 }
 
+TEST(ClosureDetectorSim, AShortDrivesTopHalfKeepsAtLeastMinCandidates) {
+    // Eight maps of one street world: the ninth's top half is 4 maps, the floor keeps every map with
+    // enough matches (a short drive's revisit can rank just below half of a handful of maps).
+    const auto world = test::MakeBoxWorld(47);
+    std::vector<LocalMap> maps;
+    for (int i = 0; i < 9; ++i) maps.push_back(test::SimulateLocalMap(world, test::StraightRoute(-60.0 + 12.0 * i, 1.0 * (i % 3), 0.05 * i), i, i));
+    const auto compared = [&](int min_candidates) {
+        ClosureDetectorConfig config;
+        config.skip_recent_maps = 0;
+        config.min_matches = 1;
+        config.min_candidates = min_candidates;
+        ClosureDetector detector(config);
+        for (const auto& map : maps) detector.AddMap(map);  // the last AddMap is the ninth map's
+        int count = 0, eligible = 0;
+        for (const auto& c : detector.last_comparisons()) {
+            count += c.stage == ComparisonStage::kCompared;
+            eligible += c.stage == ComparisonStage::kCompared || c.stage == ComparisonStage::kNotSelected;
+        }
+        return std::pair{count, eligible};
+    };
+    const auto [paper, eligible] = compared(1);
+    ASSERT_GE(eligible, 6);  // the street's maps share enough to vote for most of them
+    EXPECT_EQ(paper, 4);     // half of the 8 maps in the database
+    EXPECT_EQ(compared(10).first, eligible);
+    EXPECT_EQ(compared(6).first, 6);
+}
+
 }  // namespace
 }  // namespace revisit

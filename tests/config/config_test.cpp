@@ -64,10 +64,11 @@ TEST(Configs, PaperDetectorOverlayUndoesOnlyTheDetectorChanges) {
     EXPECT_DOUBLE_EQ(layered.detector.skip_recent_travel, paper.detector.skip_recent_travel);
     EXPECT_FALSE(layered.detector.rematch);
     EXPECT_FALSE(layered.detector.rank_by_nearest);
-    // On the defaults it undoes only the two detector defaults beyond the paper.
+    // On the defaults it undoes only the three detector defaults beyond the paper.
     PipelineConfig published;
     published.detector.rematch = false;
     published.detector.rank_by_nearest = false;
+    published.detector.min_candidates = 1;
     EXPECT_EQ(DumpConfig(LoadConfig({(kConfigs / "paper-detector.yaml").string()}, {})), DumpConfig(published));
 }
 
