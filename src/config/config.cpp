@@ -163,6 +163,9 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
               {{"none", RobustLossKind::kNone}, {"cauchy", RobustLossKind::kCauchy}, {"dcs", RobustLossKind::kDynamicCovarianceScaling}},
               "robust loss of closure edges");
     s.Add("graph.loop_loss_scale", &c.graph.loop_loss_scale, "", "kernel scale on chi^2", Range{1e-6, 1e9});
+    s.Add("graph.loop_tolerance_chi2", &c.graph.loop_tolerance_chi2, "",
+          "a closure edge costs nothing while its chi^2 is within this: it does not pull odometry that already agrees with it (0 = off)",
+          Range{0, 1e6});
     s.Add("graph.anneal", &c.graph.anneal, "", "graduated robustness: wide kernel first, so true closures far from drifted odometry still pull");
     s.Add("graph.max_iterations", &c.graph.max_iterations, "", "Ceres iterations per stage", Range{1, 100000});
     auto& n = c.graph_noise;
