@@ -157,6 +157,9 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("refinement.smear_gate_factor", &r.smear_gate_factor, "",
           "the default RMS gate rises to this multiple of the median RMS of each map registered onto its predecessor (0: max_rms alone)",
           Range{0, 100});
+    s.Add("refinement.information_effective_points", &r.information_effective_points, "",
+          "a closure's registration information counts its correspondences as this many independent points (<= 0: all)",
+          Range{-1, 1e9});
     s.Add("refinement.max_correction_translation", &r.max_correction_translation, "m", "reject refinements this far from the 2D guess", Range{0, 1000});
     s.Add("refinement.max_correction_rotation", &r.max_correction_rotation, "rad", "same, rotation", Range{0, 3.2});
     s.AddEnum("graph.loop_loss", &c.graph.loop_loss,
