@@ -160,12 +160,18 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("refinement.smear_gate_factor", &r.smear_gate_factor, "",
           "the default RMS gate rises to this multiple of the median RMS of each map registered onto its predecessor (0: max_rms alone)",
           Range{0, 100});
+    s.Add("refinement.information_effective_points", &r.information_effective_points, "",
+          "a closure's registration information counts its correspondences as this many independent points (<= 0: all)",
+          Range{-1, 1e9});
     s.Add("refinement.max_correction_translation", &r.max_correction_translation, "m", "reject refinements this far from the 2D guess", Range{0, 1000});
     s.Add("refinement.max_correction_rotation", &r.max_correction_rotation, "rad", "same, rotation", Range{0, 3.2});
     s.AddEnum("graph.loop_loss", &c.graph.loop_loss,
               {{"none", RobustLossKind::kNone}, {"cauchy", RobustLossKind::kCauchy}, {"dcs", RobustLossKind::kDynamicCovarianceScaling}},
               "robust loss of closure edges");
     s.Add("graph.loop_loss_scale", &c.graph.loop_loss_scale, "", "kernel scale on chi^2", Range{1e-6, 1e9});
+    s.Add("graph.loop_tolerance_chi2", &c.graph.loop_tolerance_chi2, "",
+          "a closure edge costs nothing while its chi^2 is within this: it does not pull odometry that already agrees with it (0 = off)",
+          Range{0, 1e6});
     s.Add("graph.anneal", &c.graph.anneal, "", "graduated robustness: wide kernel first, so true closures far from drifted odometry still pull");
     s.Add("graph.max_iterations", &c.graph.max_iterations, "", "Ceres iterations per stage", Range{1, 100000});
     auto& n = c.graph_noise;

@@ -188,7 +188,7 @@ PoseGraphResult OptimizePoseGraph(const Poses& T_world_node_initial, const std::
         auto* cost = new ceres::AutoDiffCostFunction<EdgeCost, 6, 4, 3, 4, 3>(new EdgeCost(edge.T_from_to, SqrtInformation(edge.information)));
         problem.AddResidualBlock(cost, edge.is_loop ? &loop_loss : nullptr, from.q.coeffs().data(), from.t.data(),
                                  to.q.coeffs().data(), to.t.data());
-        if (edge.is_loop) loop_chi2.push_back(EdgeChi2(edge, ToIsometry(from), ToIsometry(to)));
+        if (edge.is_loop) loop_chi2.push_back(ToleranceExcess(EdgeChi2(edge, ToIsometry(from), ToIsometry(to)), config.loop_tolerance_chi2));
     }
     const auto roots = ComponentRoots(num_nodes, edges);
     for (int i = 0; i < num_nodes; ++i) {
@@ -217,7 +217,7 @@ PoseGraphResult OptimizePoseGraph(const Poses& T_world_node_initial, const std::
                 break;
             }
         }
-        loop_loss.Reset(MakeRobustLoss(config.loop_loss, scale).release(), ceres::TAKE_OWNERSHIP);
+        loop_loss.Reset(MakeLoopLoss(config.loop_loss, scale, config.loop_tolerance_chi2).release(), ceres::TAKE_OWNERSHIP);
         ceres::Solver::Summary summary;
         ceres::Solve(options, &problem, &summary);
         result.iterations += std::max(0, static_cast<int>(summary.iterations.size()) - 1);  // entry 0 is the start
@@ -232,7 +232,8 @@ PoseGraphResult OptimizePoseGraph(const Poses& T_world_node_initial, const std::
     for (std::size_t k = 0; k < edges.size(); ++k) {
         const auto& edge = edges[k];
         result.edge_chi2[k] = EdgeChi2(edge, result.T_world_node[edge.from], result.T_world_node[edge.to]);
-        if (edge.is_loop) result.edge_weights[k] = RobustWeight(config.loop_loss, config.loop_loss_scale, result.edge_chi2[k]);
+        if (edge.is_loop)
+            result.edge_weights[k] = LoopWeight(config.loop_loss, config.loop_loss_scale, config.loop_tolerance_chi2, result.edge_chi2[k]);
     }
     return result;
 }

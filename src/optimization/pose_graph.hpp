@@ -30,6 +30,10 @@ struct PoseGraphConfig {
     /// closures). DCS needs `anneal` on drifted starts: without it, it switches off every closure.
     RobustLossKind loop_loss = RobustLossKind::kCauchy;
     double loop_loss_scale = 10.0;    ///< c (Cauchy) or Phi (DCS) on chi^2; ~ chi^2(6 dof) 88% quantile
+    /// A loop edge costs nothing while its chi^2 is within this (ToleranceExcess): a closure the odometry
+    /// already agrees with, within the closure's own uncertainty, does not pull the odometry off, and one
+    /// it disagrees with pulls only until it agrees. 0: plain least squares under the kernel.
+    double loop_tolerance_chi2 = 0.0;
     /// Graduated robustness: solve first with a wide kernel (scale = the largest initial loop
     /// chi^2, capped), then shrink it by `annealing_factor` per stage down to `loop_loss_scale`.
     /// Slower (5-20x the iterations); use it with DCS.

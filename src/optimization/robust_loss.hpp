@@ -3,6 +3,7 @@
 #include <ceres/loss_function.h>
 
 #include <memory>
+#include <utility>
 
 namespace revisit {
 
@@ -24,10 +25,35 @@ class DynamicCovarianceScalingLoss : public ceres::LossFunction {
     double phi_;
 };
 
+/// A closure's tolerance band: the chi^2 that a closure's own registration error explains costs nothing.
+/// h(s) = 0 for s <= tau, (s - tau)^2 / (2 tau) up to 2 tau, then s - 1.5 tau (continuous slope, so
+/// Levenberg-Marquardt sees no kink). An edge the estimate already satisfies within its uncertainty exerts
+/// no pull; one outside it pulls only until it is within. tau <= 0: h(s) = s.
+double ToleranceExcess(double chi2, double tolerance);
+
+/// rho(s) = inner(h(s)), h the tolerance band above, inner the robust kernel (nullptr: identity).
+class ToleranceLoss : public ceres::LossFunction {
+  public:
+    ToleranceLoss(double tolerance, std::unique_ptr<ceres::LossFunction> inner)
+        : tolerance_(tolerance), inner_(std::move(inner)) {}
+    void Evaluate(double s, double rho[3]) const override;
+
+  private:
+    double tolerance_;
+    std::unique_ptr<ceres::LossFunction> inner_;
+};
+
 /// The loss for `kind` with scale `scale` (Phi or c, on chi^2), or nullptr for kNone.
 std::unique_ptr<ceres::LossFunction> MakeRobustLoss(RobustLossKind kind, double scale);
 
+/// The robust loss behind a tolerance band of `tolerance` (chi^2); MakeRobustLoss when tolerance <= 0.
+std::unique_ptr<ceres::LossFunction> MakeLoopLoss(RobustLossKind kind, double scale, double tolerance);
+
 /// The weight rho'(chi2) the loss gives an edge with squared whitened error `chi2`, in [0, 1].
 double RobustWeight(RobustLossKind kind, double scale, double chi2);
+
+/// The robust kernel's weight of an edge behind a tolerance band: RobustWeight at the excess h(chi2),
+/// so an edge within its band keeps weight 1 (it agrees; the band only stops it pulling).
+double LoopWeight(RobustLossKind kind, double scale, double tolerance, double chi2);
 
 }  // namespace revisit

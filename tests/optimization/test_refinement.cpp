@@ -121,6 +121,33 @@ TEST(RefineAlignment, RecoversKnownPerturbationOfSyntheticStreet) {
     EXPECT_TRUE(result.accepted) << result.reason;
 }
 
+/// `points` with isotropic Gaussian noise of `sigma` metres added.
+std::vector<Eigen::Vector3d> WithNoise(std::vector<Eigen::Vector3d> points, double sigma, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, sigma);
+    for (auto& p : points) p += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    return points;
+}
+
+TEST(RefineAlignment, InformationFallsWithTheResidualSpread) {
+    // The pose graph weighs a closure by its registration (graph.closure_information_from_registration):
+    // the same place registered from noisier points must count for less, as 1 / rms^2.
+    const auto street = testing::SyntheticStreet(100.0, 20.0, 3);
+    const auto ref_points = testing::Subsample(street, 2, 0);
+    const Eigen::Isometry3d T_query_ref_true = PoseFromXYZRPY(-20.0, 3.0, 0.0, 0.0, 0.0, Degrees(-60.0));
+    const auto clean = testing::Transform(T_query_ref_true, testing::Subsample(street, 2, 1));
+    const auto sharp = RefineAlignment(ref_points, WithNoise(clean, 0.03, 1), T_query_ref_true, RefinementConfig{});
+    const auto blurred = RefineAlignment(ref_points, WithNoise(clean, 0.09, 2), T_query_ref_true, RefinementConfig{});
+    ASSERT_TRUE(sharp.accepted) << sharp.reason;
+    ASSERT_TRUE(blurred.accepted) << blurred.reason;
+    ASSERT_GT(blurred.rms, 1.5 * sharp.rms);
+    const double expected = (sharp.rms * sharp.rms) / (blurred.rms * blurred.rms);
+    EXPECT_NEAR(blurred.information.trace() / sharp.information.trace(), expected, 0.2 * expected);
+    // Each direction, not only the sum: the translation along the street as well as across it.
+    for (int axis = 0; axis < 6; ++axis)
+        EXPECT_LT(blurred.information(axis, axis), 0.8 * sharp.information(axis, axis)) << axis;
+}
+
 /// A 2D laser's local map: the walls of a 20 x 12 m floor with rooms off a corridor, every point
 /// at z = 0, a point every `spacing` metres with 1 cm noise.
 std::vector<Eigen::Vector3d> PlanarFloor(double spacing, std::uint32_t seed) {
