@@ -175,7 +175,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
     input.counts = {{"scans", std::to_string(state.odometry.size())},
                     {"local maps", std::to_string(state.maps.size())},
                     {"chain wall time (before evaluation and report) [s]", FormatNumber(state.wall_seconds, 1)}};
-    input.inspect_command = "revisit inspect " + run.root().string();
+    input.run_dir = run.root().string();
     for (const auto& [stage, timer] : state.timings) {
         if (stage.find('.') == std::string::npos) input.timings.push_back({stage, timer.total_ms / 1000.0});
     }

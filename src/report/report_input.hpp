@@ -104,6 +104,9 @@ struct ReportInput {
     /// How a user renders a page on demand; the index lists "<inspect_command> --closure N" for candidates
     /// without a page and "--map N" for maps without one.
     std::string inspect_command = "revisit inspect RUN_DIR";
+    /// The run folder that RUN_DIR stands for, named once on the index: the pages themselves do not
+    /// name it, so a run folder's pages are the same wherever it was written or moved.
+    std::string run_dir;
     std::vector<PrCurve> pr_curves;
     ErrorSeries ape_before;  ///< odometry against reference
     ErrorSeries ape_after;   ///< corrected against reference

@@ -146,6 +146,17 @@ TEST(CliRun, EvalReportAndInspectRedrawFromTheRunFolder) {
     const auto pair = test::RunCli("inspect " + test::Quote(out) + " --maps 1 0");
     EXPECT_EQ(pair.exit_code, 0) << pair.output;
     EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "maps_1_0.html"));
+    // The pages say RUN_DIR, never the folder itself: a run folder's pages are the same wherever it
+    // was written (the index names it once).
+    int pages = 0;
+    for (const auto& entry : fs::directory_iterator(fs::path(out) / "report")) {
+        if (entry.path().extension() != ".html") continue;
+        ++pages;
+        const std::string html = test::ReadFile(entry.path());
+        const bool index = entry.path().filename() == "index.html";
+        EXPECT_EQ(html.find(out) != std::string::npos, index) << entry.path();
+    }
+    EXPECT_GE(pages, 3);  // the index and the two pages rendered on demand
     const auto missing = test::RunCli("inspect " + test::Quote(out) + " --closure 9999");
     EXPECT_EQ(missing.exit_code, 1);
     EXPECT_NE(missing.output.find("no closure 9999"), std::string::npos) << missing.output;
