@@ -184,13 +184,8 @@ int RegisterAndCountBadSteps(LidarOdometry& odometry, const std::string& log, co
     return bad_steps;
 }
 
-// Orebro's corridors, key frames 1-3 m and up to 45 deg apart: the likelihood's peaks along a
-// corridor differ by ~2%, less than a one-voxel grid's sampling loss (12%), and the search picked a
-// pose 1-2 m off (steps 17, 19, 25 before). Settings the data gives the log (0.2 m voxels).
-TEST(CorrelativeOdometry, CorridorStepsFollowTheTruth) {
-    const std::string log = "orebro";
-    REVISIT_REQUIRE_DATA(CarmenDir(log) / "poses.txt");
-    const auto poses = LoadPoses(log);
+/// The settings the data gives orebro (0.2 m voxels).
+OdometryConfig OrebroSettings() {
     OdometryConfig config;
     config.planar = true;
     config.max_range = 30.0;
@@ -198,6 +193,17 @@ TEST(CorrelativeOdometry, CorridorStepsFollowTheTruth) {
     config.voxel_size = 0.2;
     config.initial_threshold = 0.4;
     config.min_motion_th = 0.02;
+    return config;
+}
+
+// Orebro's corridors, key frames 1-3 m and up to 45 deg apart: the likelihood's peaks along a
+// corridor differ by ~2%, less than a one-voxel grid's sampling loss (12%), and the search picked a
+// pose 1-2 m off (steps 17, 19, 25 before). Settings the data gives the log (0.2 m voxels).
+TEST(CorrelativeOdometry, CorridorStepsFollowTheTruth) {
+    const std::string log = "orebro";
+    REVISIT_REQUIRE_DATA(CarmenDir(log) / "poses.txt");
+    const auto poses = LoadPoses(log);
+    const OdometryConfig config = OrebroSettings();
     LidarOdometry odometry(config);
     const int first = 0, last = 60;
     const int beyond_window = 5;  // its 2.9 m step lies beyond the 1.5 m window around the prediction: not claimed
@@ -267,13 +273,7 @@ TEST(CorrelativeOdometry, TheHeadingKeepsCorridorAliasesBehindAndBesideOut) {
     const std::string log = "orebro";
     REVISIT_REQUIRE_DATA(CarmenDir(log) / "poses.txt");
     const auto poses = LoadPoses(log);
-    OdometryConfig config;
-    config.planar = true;
-    config.max_range = 30.0;
-    config.min_range = 0.25;
-    config.voxel_size = 0.2;
-    config.initial_threshold = 0.4;
-    config.min_motion_th = 0.02;
+    OdometryConfig config = OrebroSettings();
     ASSERT_TRUE(config.correlative_heading_prior);  // the default
     const int beyond_window = 5;
     LidarOdometry odometry(config);
