@@ -76,7 +76,7 @@ void AddErrorRanking(HtmlPage& page, const ReportInput& input, const ReportPlan&
     const auto row = [&](std::size_t i, const std::string& rank) {
         const auto& entry = input.closures[i];
         const Closure& c = entry.closure;
-        rows.push_back("<tr>" + TextCell(rank) + Cell(ClosureRef(input, plan, i)) +
+        rows.push_back("<tr>" + TextCell(rank) + Cell(ClosureRef(plan, i)) +
                        Cell(MapRef(plan, c.query_id) + " to " + MapRef(plan, c.ref_id)) + TextCell(Count(c.num_inliers)) +
                        TextCell(ErrorText(entry)) +
                        TextCell(entry.gt_rotation_error ? FormatNumber(*entry.gt_rotation_error, 2) : "-") + "</tr>\n");
@@ -104,7 +104,7 @@ void AddCandidateTable(HtmlPage& page, const ReportInput& input, const ReportPla
         const std::string status = ClosureStatus(entry);
         const std::string page_cell = plan.closure_has_page[i]
                                           ? HtmlLink(ClosureStem(i) + ".html", "page")
-                                          : "<code>" + EscapeXml(input.inspect_command + " --closure " + std::to_string(i)) + "</code>";
+                                          : "<code>" + EscapeXml(std::string(kInspectCommand) + " --closure " + std::to_string(i)) + "</code>";
         std::string css = status;
         std::replace(css.begin(), css.end(), ' ', '-');
         rows.push_back("<tr class=\"status-" + css + "\">" + TextCell(std::to_string(i)) + Cell(MapRef(plan, c.query_id)) +
@@ -142,7 +142,7 @@ void AddMapTable(HtmlPage& page, const ReportInput& input, const ReportPlan& pla
         const int id = input.map_ids[i];
         const std::string page_cell = plan.MapHasPage(id)
                                           ? HtmlLink(MapStem(id) + ".html", "page")
-                                          : "<code>" + EscapeXml(input.inspect_command + " --map " + std::to_string(id)) + "</code>";
+                                          : "<code>" + EscapeXml(std::string(kInspectCommand) + " --map " + std::to_string(id)) + "</code>";
         rows.push_back("<tr>" + TextCell(std::to_string(id)) +
                        TextCell(i < input.map_scans.size() ? Scans(input.map_scans[i]) : "-") + TextCell(Count(candidates[i])) +
                        TextCell(Count(accepted[i])) + Cell(page_cell) + "</tr>\n");

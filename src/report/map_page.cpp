@@ -21,7 +21,7 @@ std::string ClosureList(const ReportInput& input, int map_id, const ReportPlan& 
         if (c.query_id != map_id && c.ref_id != map_id) continue;
         const bool as_query = c.query_id == map_id;
         const int other = as_query ? c.ref_id : c.query_id;
-        html += "<li>" + ClosureRef(input, plan, i) + ": " + EscapeXml(as_query ? "query, reference " : "reference of ") +
+        html += "<li>" + ClosureRef(plan, i) + ": " + EscapeXml(as_query ? "query, reference " : "reference of ") +
                 MapRef(plan, other) +
                 EscapeXml(", " + ClosureEvidence(entry) + ", " + ClosureStatus(entry)) +
                 "</li>\n";

@@ -78,6 +78,10 @@ struct RevisitFindings {
     TextTable missed;                ///< one row per missed map pair
 };
 
+/// How a user renders a page on demand: the report lists "<kInspectCommand> --closure N" for candidates
+/// without a page and "--map N" for maps without one (ReportInput::run_dir says which folder).
+inline constexpr const char* kInspectCommand = "revisit inspect RUN_DIR";
+
 struct ReportInput {
     std::string title = "revisit report";
     std::vector<std::string> dataset_summary;  ///< one line each (path, format, scans, duration, length...)
@@ -101,11 +105,8 @@ struct ReportInput {
     /// Closures the evaluation counts as true / false against the reference (metrics.json), when evaluated.
     std::optional<int> true_closures;
     std::optional<int> false_closures;
-    /// How a user renders a page on demand; the index lists "<inspect_command> --closure N" for candidates
-    /// without a page and "--map N" for maps without one.
-    std::string inspect_command = "revisit inspect RUN_DIR";
-    /// The run folder that RUN_DIR stands for, named once on the index: the pages themselves do not
-    /// name it, so a run folder's pages are the same wherever it was written or moved.
+    /// The run folder that kInspectCommand's RUN_DIR stands for, named once on the index: the pages
+    /// themselves do not name it, so a run folder's pages are the same wherever it was written or moved.
     std::string run_dir;
     std::vector<PrCurve> pr_curves;
     ErrorSeries ape_before;  ///< odometry against reference

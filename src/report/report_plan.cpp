@@ -94,10 +94,10 @@ ReportPlan PlanReport(const ReportInput& input, const ReportPagePlan& pages) {
     return plan;
 }
 
-std::string ClosureRef(const ReportInput& input, const ReportPlan& plan, std::size_t index) {
+std::string ClosureRef(const ReportPlan& plan, std::size_t index) {
     const std::string text = "closure #" + std::to_string(index);
     if (index < plan.closure_has_page.size() && plan.closure_has_page[index]) return HtmlLink(ClosureStem(index) + ".html", text);
-    return EscapeXml(text) + " <code>" + EscapeXml(input.inspect_command + " --closure " + std::to_string(index)) + "</code>";
+    return EscapeXml(text) + " <code>" + EscapeXml(std::string(kInspectCommand) + " --closure " + std::to_string(index)) + "</code>";
 }
 
 std::string MapRef(const ReportPlan& plan, int map_id) {

@@ -37,7 +37,7 @@ ReportPlan PlanReport(const ReportInput& input, const ReportPagePlan& pages);
 bool StrongerCandidate(const ReportInput& input, std::size_t a, std::size_t b);
 
 /// "closure #N" as an HTML link to its page when it has one, else the text with the inspect command.
-std::string ClosureRef(const ReportInput& input, const ReportPlan& plan, std::size_t index);
+std::string ClosureRef(const ReportPlan& plan, std::size_t index);
 /// "map N" as an HTML link to its page when it has one, else the text.
 std::string MapRef(const ReportPlan& plan, int map_id);
 

@@ -234,7 +234,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
                     std::to_string(config.pages.closure_budget) +
                     " or fewer, else every false one, the worst, the best and an even sample; and the " +
                     std::to_string(config.pages.strongest_candidates) +
-                    " strongest below it. Any other: `" + input.inspect_command + " --closure N`" +
+                    " strongest below it. Any other: `" + std::string(kInspectCommand) + " --closure N`" +
                     (input.run_dir.empty() ? std::string(".") : " (RUN_DIR: " + input.run_dir + ")."));
     std::string thumbs = "<div class=\"thumbs\">\n";
     for (std::size_t t = 0; t < tasks.size(); ++t) {
@@ -254,7 +254,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
 
     index.Heading("Local maps", 2, "maps");
     index.Paragraph(std::to_string(input.map_ids.size()) + " local maps; " + std::to_string(plan.map_pages.size()) +
-                    " pages (the maps of the closure pages). Any other: `" + input.inspect_command + " --map N`.");
+                    " pages (the maps of the closure pages). Any other: `" + std::string(kInspectCommand) + " --map N`.");
     std::string maps = "<div class=\"thumbs\">\n";
     for (std::size_t t = 0; t < tasks.size(); ++t) {
         if (tasks[t].is_closure) continue;
