@@ -163,6 +163,9 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("refinement.information_effective_points", &r.information_effective_points, "",
           "a closure's registration information counts its correspondences as this many independent points (<= 0: all)",
           Range{-1, 1e9});
+    s.Add("refinement.min_free_space_agreement", &r.min_free_space_agreement, "",
+          "2D lasers: a pair below min_overlap is accepted when its walls agree with the other map's observations at least this share, both ways (0 = off)",
+          Range{0, 1});
     s.Add("refinement.max_correction_translation", &r.max_correction_translation, "m", "reject refinements this far from the 2D guess", Range{0, 1000});
     s.Add("refinement.max_correction_rotation", &r.max_correction_rotation, "rad", "same, rotation", Range{0, 3.2});
     s.AddEnum("graph.loop_loss", &c.graph.loop_loss,

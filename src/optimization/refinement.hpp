@@ -39,6 +39,10 @@ struct RefinementConfig {
     /// The RMS gate is at least this multiple of the median RMS with which each map registers onto its
     /// predecessor (SmearGate: what a true overlap shows under this run's odometry); <= 0: `max_rms` alone.
     double smear_gate_factor = 1.2;
+    /// A 2D laser's pair (planar maps with their scans) below `min_overlap`, which counts against the
+    /// smaller map's whole extent, is accepted when its walls agree with what the other map observed at
+    /// least this share of the time, both ways (optimization/free_space.hpp; 0 = off: `min_overlap` alone).
+    double min_free_space_agreement = 0.85;
     double max_correction_translation = 5.0;   ///< [m] a refined pose this far from the guess is a different basin: reject
     double max_correction_rotation = 0.35;     ///< [rad] (20 deg) same, for rotation
     // Uncertainty.

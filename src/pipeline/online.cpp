@@ -62,7 +62,7 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 
 ClosurePipeline::ClosurePipeline(const PipelineConfig& config, std::unique_ptr<MapPointStore> store)
     : config_(config), store_(store ? std::move(store) : MakeMemoryMapStore()), mapper_(config.local_map),
-      detector_(SweepConfig(config.detector)), refinement_gate_(config),
+      detector_(SweepConfig(config.detector)), refinement_gate_(config), free_space_(config),
       consistency_(config.consistency, OdometryNoise{config.graph_noise.odometry_translation_per_m,
                                                      config.graph_noise.odometry_rotation_per_m}) {
     if (config.output.elevation_ablation) {
@@ -82,6 +82,7 @@ void ClosurePipeline::Time(const std::string& stage, double ms) {
 PipelineUpdate ClosurePipeline::AddScan(std::size_t scan_index, const Eigen::Vector3f* points_in_sensor, std::size_t count,
                                         const Eigen::Isometry3d& T_world_sensor) {
     const auto start = std::chrono::steady_clock::now();
+    free_space_.AddScan(scan_index, points_in_sensor, count, T_world_sensor);
     auto closed = mapper_.AddScan(scan_index, points_in_sensor, count, T_world_sensor);
     Time("local_map", MillisecondsSince(start));
     return closed ? ProcessMap(*closed) : PipelineUpdate{};
@@ -110,6 +111,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     store_->Put(map.id, stored);
     if (config_.proximity.enabled) footprints_.push_back(MapFootprint(stored, FootprintCell()));
     if (config_.proximity.enabled && ConsecutiveRevisitsChecked(config_)) trails_.push_back(MakeScanTrail(map.T_map_scan, map.travel_start));
+    free_space_.CloseMap(map);
     Time("map_store", MillisecondsSince(start));
 
     start = std::chrono::steady_clock::now();
@@ -286,10 +288,13 @@ void ClosurePipeline::Refine(ClosureRecord& record, const std::vector<Eigen::Vec
     const Closure& closure = record.closure;
     const auto start = std::chrono::steady_clock::now();
     const auto ref_points = store_->Get(closure.ref_id);
+    // A 2D pair below the overlap gate is judged by what both maps observed (free_space_gate.hpp).
+    const RefinementConfig gates = free_space_.Registration(refinement, closure.query_id, closure.ref_id);
     // The query map's levelling gives the vertical along which the closure's height is searched.
-    record.refinement = prepared ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), refinement)
+    record.refinement = prepared ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), gates)
                                  : RefineAlignment(ToDouble(ref_points), ToDouble(query_points),
-                                                   Eigen::Isometry3d(closure.T_query_ref), refinement, UpInMap(query_map));
+                                                   Eigen::Isometry3d(closure.T_query_ref), gates, UpInMap(query_map));
+    free_space_.Judge(record.refinement, refinement, closure.query_id, closure.ref_id);
     Time("refinement", MillisecondsSince(start));
     record.refined = true;
     record.accepted = record.refinement.accepted;

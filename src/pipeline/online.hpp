@@ -14,6 +14,7 @@
 #include "optimization/closure_consistency.hpp"
 #include "optimization/pose_graph.hpp"
 #include "config/config.hpp"
+#include "pipeline/free_space_gate.hpp"
 #include "pipeline/refinement_gate.hpp"
 #include "pipeline/scan_trail.hpp"
 #include "runfolder/run_state.hpp"
@@ -97,6 +98,7 @@ class ClosurePipeline {
     LocalMapper mapper_;
     ClosureDetector detector_;
     RefinementGate refinement_gate_;  ///< the RMS gate from consecutive maps' registrations
+    FreeSpaceGate free_space_;        ///< 2D lasers: what each map observed, for pairs below the overlap gate
     std::optional<ClosureDetector> elevation_detector_;
     std::vector<MapRecordSummary> maps_;
     std::vector<ClosureRecord> closures_;

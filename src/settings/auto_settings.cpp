@@ -177,6 +177,9 @@ void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std
         choices.push_back({"refinement.max_correspondence_distance", 6.0 * v, {}, "six map voxels"});
         choices.push_back({"refinement.max_rms", 2.0 * v, {}, "two map voxels"});
         choices.push_back({"refinement.min_correspondences", 50.0, {}, "a 2D map has fewer points"});
+        // A revisit in a building often crosses or runs along a corridor of the other map and shares
+        // 0.15-0.3 of it; such pairs are verified by what both maps observed (free_space.hpp).
+        choices.push_back({"proximity.min_overlap", 0.15, {}, "a 2D laser: crossing corridors, verified by their free space"});
         choices.push_back({"output.map_voxel", v, {}, "the map voxel"});
         choices.push_back({"output.global_map_voxel", v, {}, "the map voxel"});
         // Indoor planar odometry drifts mostly in heading (the indoor2d preset's measurement: at the
