@@ -23,6 +23,7 @@
 #include "odometry/lidar_odometry.hpp"
 #include "runfolder/folder_map_store.hpp"
 #include "runfolder/global_map.hpp"
+#include "runfolder/map_points_file.hpp"
 #include "runfolder/planar_scans.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/online.hpp"
@@ -154,7 +155,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     PipelineConfig effective = config;
     const bool expect_reference = ground_truth.active() || reader->Info().has_reference_poses;
     effective.output.elevation_ablation = config.output.elevation_ablation && expect_reference;
-    ClosurePipeline pipeline(effective, MakeFolderMapStore(run));
+    ClosurePipeline pipeline(effective, MakeFolderMapStore(run, MapPointStep(config.output.map_voxel)));
     pipeline.on_map_closed = [&run](const LocalMap& map, const MapRecord& record) {
         if (!record.image_png.empty()) WriteBytes(run.map_density(map.id), record.image_png);
     };
