@@ -1,7 +1,7 @@
 #pragma once
 /// A local map's points as the run folder keeps them (maps/map_NNNN.rvmap, docs/formats.md): integer
 /// coordinates on a grid of 1/50 of the map's voxel, in a canonical order, zstd-compressed, versioned
-/// and checksummed. About 2.7 bytes per point instead of the 16 of a KITTI .bin.
+/// and checksummed. About 2.5 bytes per point instead of the 16 of a KITTI .bin.
 #include <filesystem>
 #include <string>
 #include <string_view>
