@@ -242,6 +242,9 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     auto& o = c.output;
     s.Add("output.map_voxel", &o.map_voxel, "m", "local maps stored in the run folder", Range{0.01, 100});
     s.Add("output.global_map_voxel", &o.global_map_voxel, "m", "corrected global map (PLY)", Range{0.01, 100});
+    s.Add("output.global_map_max_points", &o.global_map_max_points, "",
+          "corrected global map: past this many points its voxel doubles until it fits (0: no cap; not when global_map_voxel is given)",
+          Range{0, 1e9});
     s.Add("output.write_report", &o.write_report, "", "render report/index.html");
     s.Add("output.report_candidates", &o.report_candidates, "",
           "report pages for the strongest candidates below the acceptance threshold (others: table rows)", Range{0, 1e6});

@@ -70,6 +70,10 @@ struct ProximityConfig {
 struct OutputConfig {
     double map_voxel = 0.5;      ///< [m] downsampling of each local map stored in the run folder
     double global_map_voxel = 0.5;  ///< [m] downsampling of the corrected global map (PLY)
+    /// A corrected global map past this many points doubles global_map_voxel until it fits (run.json:
+    /// setting_updates): 2 M points are a 24 MB PLY and ~0.15 GB to build, however long the drive.
+    /// 0: no cap. A global_map_voxel given explicitly is kept as it is.
+    int global_map_max_points = 2000000;
     bool write_report = true;    ///< render report/index.html at the end
     /// Report pages for this many of the strongest candidates below the acceptance threshold, besides every
     /// closure that reached it; the others are rows of the index's table (`revisit inspect` renders them).
@@ -142,6 +146,11 @@ struct PipelineConfig {
     /// Settings derived from the data and why (src/settings/auto_settings.hpp), for config.yaml and run.json.
     std::vector<std::string> derived;
 };
+
+/// output.global_map_max_points, or 0 (no cap) when output.global_map_voxel was given: an explicit voxel wins.
+inline std::size_t GlobalMapMaxPoints(const PipelineConfig& config) {
+    return config.explicit_keys.count("output.global_map_voxel") != 0 ? 0 : std::size_t(config.output.global_map_max_points);
+}
 
 /// The schema bound to `config`'s fields (`config` must outlive it).
 ConfigSchema MakeConfigSchema(PipelineConfig& config);

@@ -13,6 +13,7 @@
 #include "optimization/trajectory_correction.hpp"
 #include "pipeline/refinement_gate.hpp"
 #include "pipeline/scan_trail.hpp"
+#include "runfolder/map_points_file.hpp"
 
 namespace revisit {
 namespace {
@@ -107,7 +108,9 @@ PipelineUpdate ClosurePipeline::Finish() {
 PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     PipelineUpdate update;
     auto start = std::chrono::steady_clock::now();
-    const auto stored = Downsampled(map.points, config_.output.map_voxel);
+    // On the run folder's grid whatever the store: a map read back is the map the chain used, and the
+    // Python pipeline (memory store) finds what `revisit run` finds.
+    const auto stored = SnapToMapPointGrid(Downsampled(map.points, config_.output.map_voxel), MapPointStep(config_.output.map_voxel));
     store_->Put(map.id, stored);
     if (config_.proximity.enabled) footprints_.push_back(MapFootprint(stored, FootprintCell()));
     if (config_.proximity.enabled && ConsecutiveRevisitsChecked(config_)) trails_.push_back(MakeScanTrail(map.T_map_scan, map.travel_start));

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
@@ -23,6 +24,7 @@
 #include "odometry/lidar_odometry.hpp"
 #include "runfolder/folder_map_store.hpp"
 #include "runfolder/global_map.hpp"
+#include "runfolder/map_points_file.hpp"
 #include "runfolder/planar_scans.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/online.hpp"
@@ -154,7 +156,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     PipelineConfig effective = config;
     const bool expect_reference = ground_truth.active() || reader->Info().has_reference_poses;
     effective.output.elevation_ablation = config.output.elevation_ablation && expect_reference;
-    ClosurePipeline pipeline(effective, MakeFolderMapStore(run));
+    ClosurePipeline pipeline(effective, MakeFolderMapStore(run, MapPointStep(config.output.map_voxel)));
     pipeline.on_map_closed = [&run](const LocalMap& map, const MapRecord& record) {
         if (!record.image_png.empty()) WriteBytes(run.map_density(map.id), record.image_png);
     };
@@ -314,7 +316,17 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     auto start = Clock::now();
     ReleaseFreeMemory();  // the global map is the chain's peak of memory: build it on a trimmed heap
     SaveDatabase(pipeline.detector(), run.database());
-    WriteGlobalMap(run, state, config.output.global_map_voxel);
+    const auto global_map = WriteGlobalMap(run, state, config.output.global_map_voxel, GlobalMapMaxPoints(config));
+    if (global_map.voxel_size != config.output.global_map_voxel) {
+        // A data-driven setting like the others: it applies to the whole map, so from scan 0.
+        std::ostringstream reason;
+        reason << "the corrected global map would pass output.global_map_max_points (" << config.output.global_map_max_points
+               << "); " << global_map.points << " points at the doubled voxel";
+        state.setting_updates.push_back({0, "output.global_map_voxel", config.output.global_map_voxel, global_map.voxel_size, reason.str()});
+        log << "note: map_corrected.ply: output.global_map_voxel " << config.output.global_map_voxel << " -> " << global_map.voxel_size
+            << " m to keep it within " << config.output.global_map_max_points << " points (" << global_map.points
+            << "); --set output.global_map_voxel=... keeps a voxel as given\n";
+    }
     time(state.timings["write"], start);
     state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
     state.peak_rss_kb = PeakRssKb();

@@ -238,7 +238,7 @@ ReportInput LoadReportInput(const RunFolder& run) {
     }
     const auto maps = std::make_shared<std::vector<MapRecordSummary>>(state.maps);
     input.load_local_map = [run, maps](int id) -> std::optional<LocalMap> {
-        if (id < 0 || id >= static_cast<int>(maps->size()) || !fs::exists(run.map_points(id))) return std::nullopt;
+        if (id < 0 || id >= static_cast<int>(maps->size()) || !HasMapPoints(run, id)) return std::nullopt;
         const auto& m = (*maps)[id];
         LocalMap map;
         map.id = id;

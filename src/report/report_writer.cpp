@@ -274,7 +274,7 @@ ReportStats WriteReport(const ReportInput& input, const std::filesystem::path& r
 
     if (!input.setting_updates.empty()) {
         index.Heading("Settings that followed the data", 2, "settings");
-        index.Paragraph("Settings the data changed as the sequence unfolded: the odometry's range when the scene's scale changed, the heading-drift rate the closures measured (run.json: setting_updates):");
+        index.Paragraph("Settings the data changed as the sequence unfolded: the odometry's range when the scene's scale changed, the heading-drift rate the closures measured, the global map's voxel when the map would have passed its cap (run.json: setting_updates):");
         for (const auto& line : input.setting_updates) index.Paragraph(line);
     }
 

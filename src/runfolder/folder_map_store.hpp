@@ -1,5 +1,5 @@
 #pragma once
-/// Local map points kept in the run folder (maps/map_NNNN.bin) instead of memory.
+/// Local map points kept in the run folder (maps/map_NNNN.rvmap) instead of memory.
 #include <memory>
 
 #include "closures/map_point_store.hpp"
@@ -7,8 +7,13 @@
 
 namespace revisit {
 
-std::unique_ptr<MapPointStore> MakeFolderMapStore(const RunFolder& run);
-/// Reads the stored points of one map (as written by the folder store).
+/// Stores maps on the grid of `step_m` (MapPointStep(output.map_voxel)); the chain gives them already
+/// snapped (SnapToMapPointGrid), so what it reads back is what it stored.
+std::unique_ptr<MapPointStore> MakeFolderMapStore(const RunFolder& run, double step_m);
+/// Whether the run stored local map `map_id`'s points (in either format).
+bool HasMapPoints(const RunFolder& run, int map_id);
+/// Reads the stored points of one map (as written by the folder store; a run folder written before the
+/// compact format: its KITTI .bin). A damaged file is a DatasetError naming it.
 std::vector<Eigen::Vector3f> ReadMapPoints(const RunFolder& run, int map_id);
 
 }  // namespace revisit

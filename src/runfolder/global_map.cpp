@@ -6,11 +6,11 @@
 
 namespace revisit {
 
-std::size_t WriteGlobalMap(const RunFolder& run, const RunState& state, double voxel_size) {
-    GlobalMapBuilder builder(voxel_size);
+GlobalMapWritten WriteGlobalMap(const RunFolder& run, const RunState& state, double voxel_size, std::size_t max_points) {
+    GlobalMapBuilder builder(voxel_size, max_points);
     for (const auto& map : state.maps) builder.Add(ReadMapPoints(run, map.id), map.T_world_map_corrected);
     SavePly(run.corrected_map(), builder.Points());
-    return builder.size();
+    return {builder.size(), builder.voxel_size()};
 }
 
 }  // namespace revisit

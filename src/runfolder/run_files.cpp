@@ -179,7 +179,9 @@ void WriteClosureDetail(const fs::path& file, const Closure& c) {
         const auto& m = c.matches[i];
         j["matches"].push_back({m.query_keypoint, m.ref_keypoint, m.distance, i < c.inlier_mask.size() ? c.inlier_mask[i] : 0});
     }
-    WriteJson(file, j);
+    // One line: indented, every number took a line of its own and the file was 2.8x larger (one per
+    // candidate: 15 MB of the 25 km highway's run folder).
+    WriteFileAtomically(file, JsonText(j, -1) + '\n');
 }
 
 void ReadClosureDetail(const fs::path& file, Closure& c) {

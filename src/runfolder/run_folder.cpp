@@ -43,7 +43,7 @@ void RunFolder::RemoveEarlierResults(const fs::path& root) {
     // What an earlier run wrote and this one may not (no reference: no metrics; fewer maps or
     // closures): left there it would be read as this run's. Only revisit's own names go.
     RemoveOwnFilesIf(root, IsRunResultName);
-    RemoveOwnFolder(root / "maps", {".bin", ".png"});
+    RemoveOwnFolder(root / "maps", {".rvmap", ".bin", ".png"});
     RemoveOwnFolder(root / "closures", {".json"});
     RemoveOwnFolder(root / "report", {".html", ".png", ".svg"});
 }
@@ -83,9 +83,11 @@ void RunFolder::UpdateLatestLink(const fs::path& run) {
 
 fs::path RunFolder::map_points(int id) const {
     std::ostringstream name;
-    name << "map_" << std::setw(4) << std::setfill('0') << id << ".bin";
+    name << "map_" << std::setw(4) << std::setfill('0') << id << ".rvmap";
     return maps_dir() / name.str();
 }
+
+fs::path RunFolder::legacy_map_points(int id) const { return fs::path(map_points(id)).replace_extension(".bin"); }
 
 fs::path RunFolder::map_density(int id) const {
     std::ostringstream name;

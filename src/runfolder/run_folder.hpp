@@ -13,7 +13,7 @@ class RunFolder {
     /// Creates the folder; refuses a non-empty one unless `force` (DatasetError names it). With
     /// `force`, an earlier run's results there are removed first (RemoveEarlierResults).
     static RunFolder Create(const std::filesystem::path& root, bool force);
-    /// Removes the files a run writes (by their names: run.json, closures.csv, maps/map_*.bin, report
+    /// Removes the files a run writes (by their names: run.json, closures.csv, maps/map_*.rvmap, report
     /// pages, ...) from `root`, so nothing of an earlier run is read as a new one's; other files stay.
     static void RemoveEarlierResults(const std::filesystem::path& root);
     /// Opens an existing run for reading; throws DatasetError when it is not a run folder.
@@ -38,8 +38,10 @@ class RunFolder {
     std::filesystem::path database() const { return root_ / "database.bin"; }
     std::filesystem::path corrected_map() const { return root_ / "map_corrected.ply"; }
     std::filesystem::path maps_dir() const { return root_ / "maps"; }
-    /// Downsampled points of local map `id` in its own frame (float32 x y z per point).
+    /// Downsampled points of local map `id` in its own frame (runfolder/map_points_file.hpp).
     std::filesystem::path map_points(int id) const;
+    /// The same as run folders written before the compact format kept them (KITTI .bin).
+    std::filesystem::path legacy_map_points(int id) const;
     /// The density image of local map `id` (8-bit PNG) and its origin/resolution sidecar.
     std::filesystem::path map_density(int id) const;
     std::filesystem::path report_dir() const { return root_ / "report"; }

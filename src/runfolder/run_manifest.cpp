@@ -68,7 +68,7 @@ std::vector<ManifestEntry> ListRunFiles(const RunFolder& run) {
         if (fs::is_regular_file(fs::symlink_status(file, ec))) entries.push_back(DescribeFile(file, name));
     }
     AddFolder(run, "closures", {".json"}, entries);
-    AddFolder(run, "maps", {".bin", ".png"}, entries);
+    AddFolder(run, "maps", {".rvmap", ".bin", ".png"}, entries);
     std::sort(entries.begin(), entries.end(), [](const ManifestEntry& a, const ManifestEntry& b) { return a.name < b.name; });
     return entries;
 }

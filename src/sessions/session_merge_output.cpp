@@ -112,7 +112,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
     PrepareOutputFolder(out, force);
     RemoveOwnFilesIf(out, IsMergeResultName);
     nlohmann::json sessions = nlohmann::json::array();
-    GlobalMapBuilder joint_map(config.output.global_map_voxel);
+    GlobalMapBuilder joint_map(config.output.global_map_voxel, GlobalMapMaxPoints(config));
     std::size_t connected = 0;
     for (std::size_t s = 0; s < result.sessions.size(); ++s) {
         const SessionRun& session = result.sessions[s];
@@ -165,6 +165,7 @@ void WriteMerge(const fs::path& out, bool force, MergeResult& result, const Pipe
         {"cross_closures", {{"candidates", candidates}, {"verified", verified}, {"accepted", accepted}}},
         {"joint_map", "map_joint.ply"},
         {"joint_map_points", joint_map.size()},
+        {"joint_map_voxel", joint_map.voxel_size()},
         {"graph_iterations", result.graph.iterations}};
     WriteJsonFile(out / "sessions.json", summary);
 }

@@ -197,5 +197,26 @@ TEST(GlobalMapBuilder, PlacesLocalMapsAtTheirNodesOnePointPerVoxel) {
     EXPECT_THROW(GlobalMapBuilder(0.0), ConfigError);
 }
 
+TEST(GlobalMapBuilder, PastItsCapTheVoxelDoublesAsIfBuiltAtThatVoxel) {
+    // A 40 m x 40 m floor, points 0.25 m apart (at cell centres, away from voxel borders), from two nodes.
+    std::vector<Eigen::Vector3f> floor;
+    for (int i = 0; i < 160; ++i)
+        for (int k = 0; k < 160; ++k) floor.emplace_back(0.125f + 0.25f * i, 0.125f + 0.25f * k, 0.125f);
+    const Poses nodes = {Eigen::Isometry3d::Identity(), PoseFromXYZRPY(10.0, 0.0, 0.0, 0.0, 0.0, 0.0)};
+    const auto build = [&](double voxel, std::size_t max_points) {
+        GlobalMapBuilder builder(voxel, max_points);
+        for (const auto& T_world_node : nodes) builder.Add(floor, T_world_node);
+        return builder;
+    };
+    const auto uncapped = build(0.5, 0);
+    EXPECT_EQ(uncapped.size(), 100u * 80u);  // 50 m x 40 m at 0.5 m
+    const auto capped = build(0.5, 1000);
+    EXPECT_DOUBLE_EQ(capped.voxel_size(), 2.0);  // 2,000 points at 1 m, 500 at 2 m
+    EXPECT_LE(capped.size(), 1000u);
+    const auto direct = build(2.0, 0);
+    EXPECT_EQ(capped.Points(), direct.Points());  // the same points, in the same order
+    EXPECT_DOUBLE_EQ(build(0.5, 8000).voxel_size(), 0.5);  // a map that fits keeps its voxel
+}
+
 }  // namespace
 }  // namespace revisit

@@ -210,7 +210,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         const fs::path run = CopyOfGoodRun(dir, true);
         const auto info = nlohmann::json::parse(test::ReadFile(run / "run.json"));
         ASSERT_TRUE(info.at("files").contains("closures.csv")) << info.dump(2);
-        ASSERT_TRUE(info.at("files").contains("maps/map_0000.bin"));
+        ASSERT_TRUE(info.at("files").contains("maps/map_0000.rvmap"));
         // closures.csv cut at a line boundary (still valid CSV: it would read as fewer closures).
         const auto closures = RunFolder(run).closures_csv();
         const std::string original = test::ReadFile(closures);
@@ -229,7 +229,7 @@ TEST(DamagedRun, DamagedRunFoldersAreNamed) {
         EXPECT_NE(merge.output.find(closures.string()), std::string::npos) << merge.output;
         std::ofstream(closures, std::ios::binary | std::ios::trunc) << original;
         // One flipped byte in a map's points: same size, another CRC-32.
-        const fs::path map = run / "maps" / "map_0000.bin";
+        const fs::path map = run / "maps" / "map_0000.rvmap";
         std::string bytes = test::ReadFile(map);
         bytes[bytes.size() / 3] ^= 0x01;
         std::ofstream(map, std::ios::binary | std::ios::trunc) << bytes;

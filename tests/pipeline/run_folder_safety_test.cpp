@@ -167,7 +167,7 @@ TEST(RunFolderSafety, RunForceRemovesTheResultsOfTheEarlierRun) {
     const std::string maps = test::ReadFile(run / "local_maps.csv");
     const auto map_rows = static_cast<std::size_t>(std::count(maps.begin(), maps.end(), '\n')) - 1;
     std::size_t map_files = 0;
-    for (const auto& entry : fs::directory_iterator(run / "maps")) map_files += entry.path().extension() == ".bin";
+    for (const auto& entry : fs::directory_iterator(run / "maps")) map_files += entry.path().extension() == ".rvmap";
     EXPECT_EQ(map_files, map_rows);
     EXPECT_EQ(test::ReadFile(run / "notes.txt"), "mine");  // not a file revisit wrote
     const std::string index = test::ReadFile(run / "report" / "index.html");
