@@ -82,7 +82,8 @@ void AddSimulateCommand(CLI::App& root, Action& action) {
     cmd->add_option("--seed", options->seed, "random seed (default: the preset's)");
     cmd->add_option("--scans", options->max_scans, "stop after this many scans (default: the whole route)");
     cmd->add_option("--length", options->length,
-                    "route length [m] of a city or highway preset (default: the preset's); the world grows with it, "
+                    "route length [m] of a city or highway preset (default: the preset's; the route also drives every planned "
+                    "revisit, so it can come out longer); the world grows with it, "
                     "e.g. --preset highway-64 --length 25000 for the paper's highway scale")
         ->check(CLI::Range(100.0, 500000.0));
     cmd->add_option("--trajectory", options->trajectory,
