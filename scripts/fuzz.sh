@@ -10,7 +10,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${REVISIT_FUZZ_BUILD:-$root/build-fuzz}"
-targets=(fuzz_scans fuzz_trajectories fuzz_rawlog fuzz_mcap fuzz_db3 fuzz_ros1 fuzz_carmen fuzz_database fuzz_config fuzz_run_folder fuzz_profile)
+targets=(fuzz_scans fuzz_trajectories fuzz_rawlog fuzz_mcap fuzz_db3 fuzz_ros1 fuzz_carmen fuzz_database fuzz_map_points fuzz_config fuzz_run_folder fuzz_profile)
 
 smoke=0
 if [[ "${1:-}" == "--smoke" ]]; then

@@ -40,10 +40,12 @@ struct GridPoint {
     }
 };
 
+/// Grid indices stay below this in magnitude: blocks are int32 and their deltas must stay int32 too.
+constexpr double kGridLimit = double(kMapPointCellsPerVoxel) * double(1 << 29);
+
 std::vector<GridPoint> ToGrid(const std::vector<Eigen::Vector3f>& points, double step_m) {
     if (!(step_m > 0.0)) throw std::invalid_argument("map points: the grid step must be positive");
-    // Blocks are int32 and their deltas must stay int32 too.
-    const double limit = double(kMapPointCellsPerVoxel) * double(1 << 29);
+    const double limit = kGridLimit;
     std::vector<GridPoint> grid(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         for (int axis = 0; axis < 3; ++axis) {
@@ -168,7 +170,10 @@ std::vector<Eigen::Vector3f> DecodeMapPoints(std::string_view bytes, const std::
     std::uint32_t stored_crc;
     std::memcpy(&stored_crc, bytes.data() + bytes.size() - kTrailerBytes, kTrailerBytes);
     if (stored_crc != Crc32(bytes.substr(0, bytes.size() - kTrailerBytes))) throw fail("checksum mismatch");
-    if (!(step_m > 0.0) || cells != std::uint32_t(kMapPointCellsPerVoxel)) throw fail("grid step or cells out of range");
+    // The largest step a run writes: the largest `output.map_voxel` (100 m) over the cells per voxel. A
+    // larger one would put sealed points beyond any float.
+    constexpr double kMaxStep = 100.0 / kMapPointCellsPerVoxel;
+    if (!(step_m > 0.0) || !(step_m <= kMaxStep) || cells != std::uint32_t(kMapPointCellsPerVoxel)) throw fail("grid step or cells out of range");
     // A count the compressed bytes cannot plausibly hold is refused before anything is allocated.
     const std::uint64_t payload_size = count * kPayloadBytesPerPoint;
     if (count > (std::uint64_t(1) << 40) || payload_size > 256 * compressed_size + (std::uint64_t(16) << 20)) {
@@ -193,6 +198,9 @@ std::vector<Eigen::Vector3f> DecodeMapPoints(std::string_view bytes, const std::
             const auto cell = static_cast<std::uint8_t>(payload[(12 + axis) * n + i]);
             if (cell >= kMapPointCellsPerVoxel) throw fail("cell out of range at point " + std::to_string(i));
             grid[i].cell[axis] = cell;
+            // The writer's range (ToGrid): a point beyond it was never written.
+            const double index = double(grid[i].block[axis]) * kMapPointCellsPerVoxel + cell;
+            if (!(std::abs(index) < kGridLimit)) throw fail("point " + std::to_string(i) + " lies beyond the grid's range");
         }
     }
     return FromGrid(grid, step_m);

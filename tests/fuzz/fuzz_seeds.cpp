@@ -14,6 +14,7 @@
 #include "io/trajectory_io.hpp"
 #include "io/writer.hpp"
 #include "config/config.hpp"
+#include "runfolder/map_points_file.hpp"
 #include "runfolder/run_files.hpp"
 #include "../io/mcap_test_writer.hpp"
 
@@ -223,6 +224,8 @@ int main(int argc, char** argv) {
         detector.AddMap(map);
         SaveDatabase(detector, tmp / "database.bin");
         Seed(out / "fuzz_database", "database", -1, ReadBytes(tmp / "database.bin"));
+        // A local map's points (maps/map_NNNN.rvmap) at a 0.5 m map voxel.
+        Seed(out / "fuzz_map_points", "map", -1, EncodeMapPoints(map.points, MapPointStep(0.5)));
         // Configs: the defaults and a preset-like override file.
         Seed(out / "fuzz_config", "default", -1, DumpConfig(PipelineConfig{}));
         Seed(out / "fuzz_config", "small", -1, "density:\n  resolution: 0.2\nodometry:\n  planar: true\n");

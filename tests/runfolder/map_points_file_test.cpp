@@ -1,9 +1,11 @@
 /// The stored local maps: what is written reads back on the grid, in a canonical order, byte-identical
 /// whatever order the points came in; a damaged or cut file is an error naming it, never a map.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <random>
 
@@ -93,6 +95,41 @@ TEST(MapPointsFile, DamagedOrTruncatedFilesAreErrorsNamingTheFile) {
     }
     std::string kitti(16 * 100, '\0');  // a KITTI .bin of 100 points renamed
     expect_named_error(kitti, "not this format");
+}
+
+}  // namespace
+}  // namespace revisit
+
+namespace revisit {
+namespace {
+
+/// `bytes` with the double at `offset` replaced and the CRC-32 trailer made to match: a file whose
+/// checksum is right but whose header is not.
+std::string Resealed(std::string bytes, std::size_t offset, double value) {
+    std::memcpy(bytes.data() + offset, &value, sizeof(value));
+    const auto crc = static_cast<std::uint32_t>(
+        crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size() - 4)));
+    std::memcpy(bytes.data() + bytes.size() - 4, &crc, sizeof(crc));
+    return bytes;
+}
+
+TEST(MapPointsFile, ASealedFileWithAGridStepBeyondAnyMapVoxelIsAnError) {
+    // Found by fuzz_map_points: a step of 1e300 m read back as infinite points.
+    const std::vector<Eigen::Vector3f> points = {{1.f, 2.f, 3.f}, {-4.f, 5.f, 0.5f}};
+    const std::string good = EncodeMapPoints(points, MapPointStep(0.5));
+    ASSERT_EQ(DecodeMapPoints(good, "map_0000.rvmap").size(), 2u);
+    constexpr std::size_t kStepOffset = 16;  // magic, version, count
+    for (const double step : {1e300, 2.5, -0.01, std::nan("")}) {
+        try {
+            DecodeMapPoints(Resealed(good, kStepOffset, step), "map_0000.rvmap");
+            ADD_FAILURE() << "step " << step << " read as good";
+        } catch (const DatasetError& e) {
+            EXPECT_NE(std::string(e.what()).find("map_0000.rvmap"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("grid step"), std::string::npos) << e.what();
+        }
+    }
+    // The largest step a run writes (a 100 m map voxel) still reads.
+    EXPECT_EQ(DecodeMapPoints(Resealed(good, kStepOffset, 2.0), "map_0000.rvmap").size(), 2u);
 }
 
 }  // namespace
