@@ -97,7 +97,8 @@ CloudData PointsFromCloud2(const PointCloud2Msg& msg) {
     std::vector<double> times;
     if (time) times.reserve(n);
     const bool fast_xyz = !swap && x->datatype == kFloat32 && y->datatype == kFloat32 && z->datatype == kFloat32;
-    for (std::uint32_t row = 0; row < msg.height; ++row) {
+    // A cloud of no columns has no points whatever its rows claim (found by fuzz_db3: 4e9 empty rows).
+    for (std::uint32_t row = 0; msg.width > 0 && row < msg.height; ++row) {
         const std::uint8_t* p = msg.data + std::size_t(row) * msg.row_step;
         for (std::uint32_t col = 0; col < msg.width; ++col, p += msg.point_step) {
             Eigen::Vector3f point;

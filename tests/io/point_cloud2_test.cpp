@@ -85,6 +85,15 @@ TEST(PointCloud2, PointTimesInSecondsRelativeToTheStamp) {
     EXPECT_NEAR(absolute[1], 0.05, 1e-6);
 }
 
+TEST(PointCloud2, ACloudOfNoColumnsIsEmptyWhateverItsRows) {
+    CloudBuilder b;
+    b.msg.height = 4000000000u, b.msg.width = 0, b.msg.point_step = 12, b.msg.row_step = 0;
+    b.Field("x", 0, 7), b.Field("y", 4, 7), b.Field("z", 8, 7);
+    const CloudData cloud = PointsFromCloud2(b.Done());
+    EXPECT_TRUE(cloud.points.empty());
+    EXPECT_EQ(cloud.non_finite, 0u);
+}
+
 TEST(PointCloud2, LayoutsThatDoNotFitAreErrors) {
     CloudBuilder b;
     b.msg.height = 1, b.msg.width = 10, b.msg.point_step = 12, b.msg.row_step = 120;
