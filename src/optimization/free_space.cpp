@@ -16,14 +16,23 @@ ObservedGrid::ObservedGrid(const std::vector<std::vector<Eigen::Vector3f>>& scan
                            double cell_size, double hit_margin)
     : cell_(cell_size) {
     const std::size_t n = std::min(scans.size(), T_map_scan.size());
+    // Each scan's origin and returns in the map frame, once: the box, the beams and the returns use them.
+    std::vector<Eigen::Vector2d> origins(n);
+    std::vector<std::vector<Eigen::Vector2d>> hits(n);
     Eigen::Vector2i lo(INT32_MAX, INT32_MAX), hi(INT32_MIN, INT32_MIN);
-    const auto grow = [&](const Eigen::Vector2i& c) {
+    const auto grow = [&](const Eigen::Vector2d& p) {
+        const Eigen::Vector2i c = Floor(p, cell_);
         lo = lo.cwiseMin(c);
         hi = hi.cwiseMax(c);
     };
     for (std::size_t s = 0; s < n; ++s) {
-        grow(Floor(T_map_scan[s].translation().head<2>(), cell_));
-        for (const auto& p : scans[s]) grow(Floor((T_map_scan[s] * p.cast<double>()).head<2>(), cell_));
+        origins[s] = T_map_scan[s].translation().head<2>();
+        grow(origins[s]);
+        hits[s].reserve(scans[s].size());
+        for (const auto& p : scans[s]) {
+            hits[s].push_back((T_map_scan[s] * p.cast<double>()).head<2>());
+            grow(hits[s].back());
+        }
     }
     if (lo.x() > hi.x()) return;
     min_ = lo;
@@ -34,20 +43,18 @@ ObservedGrid::ObservedGrid(const std::vector<std::vector<Eigen::Vector3f>>& scan
     // Beams first, returns after: a cell that held a return in any scan is occupied, not free.
     const double step = 0.5 * cell_;
     for (std::size_t s = 0; s < n; ++s) {
-        const Eigen::Vector2d origin = T_map_scan[s].translation().head<2>();
-        for (const auto& p : scans[s]) {
-            const Eigen::Vector2d hit = (T_map_scan[s] * p.cast<double>()).head<2>();
-            const double length = (hit - origin).norm() - hit_margin;
+        for (const auto& hit : hits[s]) {
+            const double length = (hit - origins[s]).norm() - hit_margin;
             if (length <= 0.0) continue;
-            const Eigen::Vector2d direction = (hit - origin).normalized();
+            const Eigen::Vector2d direction = (hit - origins[s]).normalized();
             // Half-cell steps visit every cell the beam crosses but for corner clips, which only thin the
             // free space (the check then counts fewer contradictions, never more).
-            for (double t = 0.0; t < length; t += step) Set(free_, Floor(origin + t * direction, cell_));
+            for (double t = 0.0; t < length; t += step) Set(free_, Floor(origins[s] + t * direction, cell_));
         }
     }
-    for (std::size_t s = 0; s < n; ++s) {
-        for (const auto& p : scans[s]) {
-            const Eigen::Vector2i c = Floor((T_map_scan[s] * p.cast<double>()).head<2>(), cell_);
+    for (const auto& scan_hits : hits) {
+        for (const auto& hit : scan_hits) {
+            const Eigen::Vector2i c = Floor(hit, cell_);
             if (Get(occupied_, c)) continue;
             Set(occupied_, c);
             occupied_cells_.push_back((c.cast<double>() + Eigen::Vector2d(0.5, 0.5)) * cell_);
