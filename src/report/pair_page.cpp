@@ -108,7 +108,12 @@ void WriteText(const std::filesystem::path& path, const std::string& text) {
 
 WrittenPage WritePairPage(const ReportInput& input, const ClosureEntry& entry, bool detected, const std::string& stem,
                        const std::filesystem::path& report_dir, const ReportConfig& config, const std::string& nav_html) {
-    const Closure& c = entry.closure;
+    Closure c = entry.closure;
+    // Closure files keep only the matches; both maps' keypoints come from the run's database.
+    if (input.load_keypoints) {
+        if (c.query_keypoints.empty()) c.query_keypoints = input.load_keypoints(c.query_id);
+        if (c.ref_keypoints.empty()) c.ref_keypoints = input.load_keypoints(c.ref_id);
+    }
     const auto query_map = LoadMap(input, c.query_id);
     const auto ref_map = LoadMap(input, c.ref_id);
     const auto query_density = LoadDensity(input, query_map, c.query_id, config);

@@ -166,25 +166,30 @@ json SettingUpdatesJson(const std::vector<SettingUpdate>& updates) {
     return out;
 }
 
+/// The keypoint count local_maps.csv gives map `id` (a closure's match indices stay below it); 0 when the
+/// run has no such map.
+int KeypointsOfMap(const std::vector<MapRecordSummary>& maps, int id) {
+    for (const auto& m : maps)
+        if (m.id == id) return m.num_keypoints;
+    return 0;
+}
+
 }  // namespace
 
 void WriteClosureDetail(const fs::path& file, const Closure& c) {
+    // Only the matches: both maps' keypoints are in database.bin already (the report reads them from there),
+    // and here they were ~95% of every file (one file per candidate: 9 MB of a 6,600-scan highway's folder).
     json j;
-    j["query_keypoints"] = json::array();
-    for (const auto& k : c.query_keypoints) j["query_keypoints"].push_back({k.x(), k.y()});
-    j["ref_keypoints"] = json::array();
-    for (const auto& k : c.ref_keypoints) j["ref_keypoints"].push_back({k.x(), k.y()});
     j["matches"] = json::array();
     for (std::size_t i = 0; i < c.matches.size(); ++i) {
         const auto& m = c.matches[i];
         j["matches"].push_back({m.query_keypoint, m.ref_keypoint, m.distance, i < c.inlier_mask.size() ? c.inlier_mask[i] : 0});
     }
-    // One line: indented, every number took a line of its own and the file was 2.8x larger (one per
-    // candidate: 15 MB of the 25 km highway's run folder).
+    // One line: indented, every number took a line of its own and the file was 2.8x larger.
     WriteFileAtomically(file, JsonText(j, -1) + '\n');
 }
 
-void ReadClosureDetail(const fs::path& file, Closure& c) {
+void ReadClosureDetail(const fs::path& file, Closure& c, int num_query_keypoints, int num_ref_keypoints) {
     const json j = ReadJson(file);
     // Values are range-checked before conversion: a float cast out of range is undefined behaviour.
     const auto number = [&file](const json& value, double low, double high) {
@@ -200,13 +205,18 @@ void ReadClosureDetail(const fs::path& file, Closure& c) {
         c.ref_keypoints.clear();
         c.matches.clear();
         c.inlier_mask.clear();
-        for (const auto& k : j.at("query_keypoints"))
-            c.query_keypoints.emplace_back(number(k.at(0), -kMaxPixel, kMaxPixel), number(k.at(1), -kMaxPixel, kMaxPixel));
-        for (const auto& k : j.at("ref_keypoints"))
-            c.ref_keypoints.emplace_back(number(k.at(0), -kMaxPixel, kMaxPixel), number(k.at(1), -kMaxPixel, kMaxPixel));
+        // Run folders written before the keypoints moved out still carry them: read, and bound the matches by them.
+        if (j.contains("query_keypoints") || j.contains("ref_keypoints")) {
+            for (const auto& k : j.at("query_keypoints"))
+                c.query_keypoints.emplace_back(number(k.at(0), -kMaxPixel, kMaxPixel), number(k.at(1), -kMaxPixel, kMaxPixel));
+            for (const auto& k : j.at("ref_keypoints"))
+                c.ref_keypoints.emplace_back(number(k.at(0), -kMaxPixel, kMaxPixel), number(k.at(1), -kMaxPixel, kMaxPixel));
+            num_query_keypoints = static_cast<int>(c.query_keypoints.size());
+            num_ref_keypoints = static_cast<int>(c.ref_keypoints.size());
+        }
         for (const auto& m : j.at("matches")) {
-            const auto query = static_cast<int>(number(m.at(0), 0, double(c.query_keypoints.size()) - 1));
-            const auto ref = static_cast<int>(number(m.at(1), 0, double(c.ref_keypoints.size()) - 1));
+            const auto query = static_cast<int>(number(m.at(0), 0, double(num_query_keypoints) - 1));
+            const auto ref = static_cast<int>(number(m.at(1), 0, double(num_ref_keypoints) - 1));
             c.matches.push_back(FeatureMatch{query, ref, static_cast<int>(number(m.at(2), 0, 1024))});
             c.inlier_mask.push_back(static_cast<std::uint8_t>(number(m.at(3), 0, 1)));
         }
@@ -340,7 +350,7 @@ RunState ReadRunState(const RunFolder& run) {
         r.reason = closures.Text(i, "reason");
         r.refinement.reason = r.reason;
         const auto detail = ClosureDetailFile(run, i);
-        if (fs::exists(detail)) ReadClosureDetail(detail, c);
+        if (fs::exists(detail)) ReadClosureDetail(detail, c, KeypointsOfMap(state.maps, c.query_id), KeypointsOfMap(state.maps, c.ref_id));
         state.closures.push_back(std::move(r));
     }
     ReadComparisons(run, state);

@@ -59,7 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         if (target.extension() == ".json" && target.parent_path().filename() == "closures") {
             Closure closure;
-            ReadClosureDetail(target, closure);
+            ReadClosureDetail(target, closure, 1000, 1000);  // the seed run's maps hold fewer
         } else {
             ReadRunState(run);
         }
