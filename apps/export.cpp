@@ -17,9 +17,9 @@ struct ExportCommandOptions {
 
 void AddExportCommand(CLI::App& root, Action& action) {
     auto o = std::make_shared<ExportCommandOptions>();
-    auto* cmd = root.add_subcommand("export", "Write a finished run's pose graph (g2o), closures (JSON) or occupancy grid (PGM + YAML) for other tools");
+    auto* cmd = root.add_subcommand("export", "Write a finished run's pose graph (g2o), closures (JSON) or occupancy grid (PNG or PGM + YAML) for other tools");
     cmd->footer(
-        "Every run folder already holds pose_graph.g2o (one vertex per local map), closures.json and occupancy.pgm +\n"
+        "Every run folder already holds pose_graph.g2o (one vertex per local map), closures.json and occupancy.png +\n"
         "occupancy.yaml (map_server / nav2); this command writes them again from the run folder, the graph also per\n"
         "scan, the grid with other --set occupancy.* values (docs/formats.md describes all three).\n"
         "Examples:\n"
@@ -29,7 +29,7 @@ void AddExportCommand(CLI::App& root, Action& action) {
     cmd->add_option("run", o->run, "run folder")->required();
     cmd->add_option("--format", o->export_options.format, "g2o, closures-json or occupancy")->capture_default_str();
     cmd->add_flag("--per-scan", o->export_options.per_scan, "g2o: one vertex per scan instead of per local map");
-    cmd->add_option("--out", o->out, "file to write (default: into the run folder; occupancy: the .pgm, its .yaml beside it)");
+    cmd->add_option("--out", o->out, "file to write (default: into the run folder; occupancy: the .png or .pgm, its .yaml beside it)");
     cmd->add_option("--set", o->export_options.overrides, "occupancy: key=value over the run's config.yaml (occupancy.* keys)");
     cmd->callback([o, &action] {
         action = [o] {

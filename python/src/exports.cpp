@@ -66,7 +66,7 @@ void BindExports(py::module_& m) {
         py::arg("run"), py::arg("format") = "g2o", py::arg("per_scan") = false, py::arg("out") = py::none(),
         py::arg("set") = py::dict(),
         "Writes a finished run's pose graph (format='g2o', per map or per_scan), its closures "
-        "(format='closures-json') or its occupancy grid (format='occupancy': the .pgm and its .yaml; `set` takes "
+        "(format='closures-json') or its occupancy grid (format='occupancy': the .png (or .pgm) and its .yaml; `set` takes "
         "occupancy.* keys); returns the file written (the occupancy grid's YAML; default: into the run folder).");
     m.def("optimize_pose_graph", &OptimizePoseGraphNumpy, py::arg("nodes"), py::arg("edges"), py::arg("config") = py::none(),
           "revisit's Ceres pose graph: nodes (N, 4, 4) initial T_world_node; edges (from, to, T_from_to 4x4, information "

@@ -87,7 +87,7 @@ struct OutputConfig {
     bool elevation_ablation = true;  ///< also score the elevation-image ablation when ground truth exists
 };
 
-/// The occupancy grid every run writes (occupancy.pgm, occupancy.yaml: src/exports/run_occupancy.hpp).
+/// The occupancy grid every run writes (occupancy.png, occupancy.yaml: src/exports/run_occupancy.hpp).
 struct OccupancyConfig {
     double resolution = 0.0;          ///< [m per cell]; 0: 0.05 for 2D lasers, the stored maps' voxel for 3D runs
     /// A larger extent doubles the cell until it fits (occupancy.yaml says which): the grid then holds at

@@ -1,5 +1,7 @@
 #include "exports/occupancy_grid.hpp"
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -101,6 +103,14 @@ void WritePgm(std::ostream& out, const OccupancyGrid& grid, double occupied_shar
     const auto pixels = grid.Image(occupied_share);
     out << "P5\n" << grid.width() << ' ' << grid.height() << "\n255\n";
     out.write(reinterpret_cast<const char*>(pixels.data()), static_cast<std::streamsize>(pixels.size()));
+}
+
+void WritePng(std::ostream& out, const OccupancyGrid& grid, double occupied_share) {
+    auto pixels = grid.Image(occupied_share);
+    const cv::Mat image(grid.height(), grid.width(), CV_8UC1, pixels.data());
+    std::vector<std::uint8_t> bytes;
+    if (!cv::imencode(".png", image, bytes, {cv::IMWRITE_PNG_COMPRESSION, 9})) throw std::runtime_error("PNG encoding of the occupancy grid failed");
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
 void WriteMapYaml(std::ostream& out, const OccupancyGrid& grid, const std::string& image_name) {

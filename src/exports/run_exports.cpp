@@ -14,7 +14,7 @@ void WriteRunExports(const RunFolder& run, const RunState& state, const Pipeline
     const ExportGraph graph = RunPoseGraph(state, config, false);
     WriteFileAtomically(run.root() / "pose_graph.g2o", [&](std::ostream& out) { WriteG2o(out, graph); });
     WriteFileAtomically(run.root() / "closures.json", [&](std::ostream& out) { WriteClosuresJson(out, state, config); });
-    WriteRunOccupancy(run, state, config, run.root() / "occupancy.pgm");
+    WriteRunOccupancy(run, state, config, run.root() / "occupancy.png");
 }
 
 fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
@@ -39,8 +39,10 @@ fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
     fs::path out = options.out;
     if (options.format == "occupancy") {
         // The image and its YAML go together; the YAML names the image relative to itself.
-        if (out.empty()) out = run.root() / "occupancy.pgm";
-        if (out.extension() != ".pgm") throw ConfigError("--out " + out.string() + ": the occupancy image is a .pgm (its .yaml goes beside it)");
+        if (out.empty()) out = run.root() / "occupancy.png";
+        if (out.extension() != ".png" && out.extension() != ".pgm") {
+            throw ConfigError("--out " + out.string() + ": the occupancy image is a .png or a .pgm (its .yaml goes beside it)");
+        }
         return WriteRunOccupancy(run, state, config, out);
     }
     if (out.empty()) {

@@ -1,5 +1,5 @@
 #pragma once
-/// The exports every run folder gets (pose_graph.g2o, closures.json, occupancy.pgm + .yaml), and
+/// The exports every run folder gets (pose_graph.g2o, closures.json, occupancy.png + .yaml), and
 /// `revisit export` for finished runs.
 #include <filesystem>
 #include <string>
@@ -11,7 +11,7 @@
 
 namespace revisit {
 
-/// pose_graph.g2o (per map), closures.json and occupancy.pgm + occupancy.yaml into the run folder.
+/// pose_graph.g2o (per map), closures.json and occupancy.png + occupancy.yaml into the run folder.
 void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config);
 
 struct ExportOptions {
@@ -19,7 +19,7 @@ struct ExportOptions {
     bool per_scan = false;       ///< g2o: one vertex per scan instead of per local map
     /// `key=value` over the run's config.yaml: occupancy.* keys only (the graph and closures are the run's).
     std::vector<std::string> overrides;
-    std::filesystem::path out;   ///< empty: into the run folder (pose_graph.g2o, pose_graph_scans.g2o, closures.json, occupancy.pgm)
+    std::filesystem::path out;   ///< empty: into the run folder (pose_graph.g2o, pose_graph_scans.g2o, closures.json, occupancy.png)
 };
 
 /// Re-creates an export from a finished run folder; returns the file written (occupancy: its YAML). Throws ConfigError for an

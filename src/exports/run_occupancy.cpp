@@ -173,12 +173,15 @@ OccupancyGrid BuildRunOccupancy(const RunFolder& run, const RunState& state, con
     return config.odometry.planar ? PlanarOccupancy(run, state, config.occupancy) : BandOccupancy(run, state, config);
 }
 
-fs::path WriteRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config, const fs::path& pgm) {
+fs::path WriteRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config, const fs::path& image) {
     const OccupancyGrid grid = BuildRunOccupancy(run, state, config);
-    fs::path yaml = pgm;
+    fs::path yaml = image;
     yaml.replace_extension(".yaml");
-    WriteFileAtomically(pgm, [&](std::ostream& out) { WritePgm(out, grid, config.occupancy.occupied_share); });
-    WriteFileAtomically(yaml, [&](std::ostream& out) { WriteMapYaml(out, grid, pgm.filename().string()); });
+    WriteFileAtomically(image, [&](std::ostream& out) {
+        if (image.extension() == ".pgm") WritePgm(out, grid, config.occupancy.occupied_share);
+        else WritePng(out, grid, config.occupancy.occupied_share);
+    });
+    WriteFileAtomically(yaml, [&](std::ostream& out) { WriteMapYaml(out, grid, image.filename().string()); });
     return yaml;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// A run's occupancy grid (occupancy.pgm + occupancy.yaml) from its corrected trajectory, for
+/// A run's occupancy grid (occupancy.png + occupancy.yaml) from its corrected trajectory, for
 /// navigation stacks (map_server, nav2).
 #include <filesystem>
 
@@ -16,8 +16,9 @@ namespace revisit {
 /// levelled frame. Throws DatasetError for a damaged run folder.
 OccupancyGrid BuildRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config);
 
-/// Writes `pgm` and the YAML beside it (same name, .yaml); returns the YAML's path.
+/// Writes `image` (PNG, or PGM when its name ends in .pgm) and the YAML beside it (same name, .yaml);
+/// returns the YAML's path.
 std::filesystem::path WriteRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config,
-                                        const std::filesystem::path& pgm);
+                                        const std::filesystem::path& image);
 
 }  // namespace revisit

@@ -20,7 +20,7 @@ bool IsRunResultName(const std::string& name) {
                                          "poses_reference_tum.txt", "closures.csv", "local_maps.csv", "comparisons.csv",
                                          "metrics.json", "timings.json", "database.bin", "map_corrected.ply",
                                          "comparison.md", "ground_truth_closures.txt", "pose_graph.g2o", "closures.json",
-                                         "occupancy.pgm", "occupancy.yaml"};
+                                         "occupancy.png", "occupancy.pgm", "occupancy.yaml"};  // .pgm: older runs
     for (const char* n : kNames) {
         if (name == n) return true;
     }

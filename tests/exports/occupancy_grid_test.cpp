@@ -77,6 +77,15 @@ ReadBack WriteAndRead(const OccupancyGrid& grid, const fs::path& dir) {
     EXPECT_TRUE(occ(kPgmUnknown) >= free && occ(kPgmUnknown) <= occupied);
     back.image = cv::imread((dir / "room.pgm").string(), cv::IMREAD_UNCHANGED);
     EXPECT_EQ(back.image.type(), CV_8UC1);
+    // The run folder's PNG holds the same pixels, in far fewer bytes for a grid of mostly one value.
+    {
+        std::ofstream png(dir / "room.png", std::ios::binary);
+        WritePng(png, grid, 0.25);
+    }
+    const cv::Mat from_png = cv::imread((dir / "room.png").string(), cv::IMREAD_UNCHANGED);
+    EXPECT_EQ(from_png.type(), CV_8UC1);
+    EXPECT_EQ(cv::countNonZero(from_png != back.image), 0);
+    EXPECT_LT(fs::file_size(dir / "room.png"), fs::file_size(dir / "room.pgm") / 4);
     return back;
 }
 

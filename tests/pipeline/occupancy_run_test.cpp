@@ -1,4 +1,4 @@
-/// occupancy.pgm + occupancy.yaml of whole runs, read back with OpenCV and yaml-cpp as a navigation
+/// occupancy.png + occupancy.yaml of whole runs, read back with OpenCV and yaml-cpp as a navigation
 /// stack reads them: a 2D laser's rays traced at the corrected poses, a 3D run's band of heights.
 #include <gtest/gtest.h>
 
