@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -18,7 +19,7 @@
 namespace revisit {
 namespace {
 
-using VoxelSet = std::vector<std::uint64_t>;  // sorted, unique voxel keys
+constexpr std::size_t kNoSegment = std::numeric_limits<std::size_t>::max();
 
 /// 21 bits per axis around an offset: +-1048576 voxels, +-524 km at 0.5 m.
 std::uint64_t VoxelKey(const Eigen::Vector3d& point, double voxel_size) {
@@ -39,11 +40,62 @@ std::uint64_t Mix(std::uint64_t x) {
     return x ^ (x >> 31);
 }
 
-/// Adds the voxels of one scan to a sorted, unique set, keeping its capacity tight (thousands of sets
-/// are alive at once on a long sequence).
-void AddVoxels(VoxelSet& voxels, const Eigen::Isometry3d& T_world_sensor,
+/// LEB128 varint of `value` appended to `out`.
+void AppendVarint(std::vector<std::uint8_t>& out, std::uint64_t value) {
+    while (value >= 0x80) {
+        out.push_back(static_cast<std::uint8_t>(value) | 0x80);
+        value >>= 7;
+    }
+    out.push_back(static_cast<std::uint8_t>(value));
+}
+
+/// Reads a packed set's keys in order.
+class PackedReader {
+  public:
+    explicit PackedReader(const PackedVoxels& set) : next_(set.bytes.data()), end_(set.bytes.data() + set.bytes.size()) {}
+    bool Next(std::uint64_t& key) {
+        if (next_ == end_) return false;
+        std::uint64_t gap = 0;
+        for (int shift = 0; next_ != end_; shift += 7) {
+            const std::uint8_t byte = *next_++;
+            gap |= static_cast<std::uint64_t>(byte & 0x7F) << shift;
+            if (!(byte & 0x80)) break;
+        }
+        key_ += gap;
+        key = key_;
+        return true;
+    }
+
+  private:
+    const std::uint8_t* next_;
+    const std::uint8_t* end_;
+    std::uint64_t key_ = 0;
+};
+
+PackedVoxels Pack(const std::vector<std::uint64_t>& sorted_keys) {
+    PackedVoxels set;
+    set.size = sorted_keys.size();
+    std::uint64_t last = 0;
+    for (const std::uint64_t key : sorted_keys) {
+        AppendVarint(set.bytes, key - last);
+        last = key;
+    }
+    set.bytes.shrink_to_fit();
+    return set;
+}
+
+std::vector<std::uint64_t> Unpack(const PackedVoxels& set) {
+    std::vector<std::uint64_t> keys;
+    keys.reserve(set.size);
+    PackedReader reader(set);
+    for (std::uint64_t key = 0; reader.Next(key);) keys.push_back(key);
+    return keys;
+}
+
+/// Adds the voxels of one scan to a segment's set.
+void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
                const std::vector<Eigen::Vector3f>& points_in_sensor, const GtClosureConfig& config) {
-    VoxelSet scan_voxels;
+    std::vector<std::uint64_t> scan_voxels;
     scan_voxels.reserve(points_in_sensor.size() / std::max<std::size_t>(1, config.voxel_subsample) + 1);
     for (const Eigen::Vector3f& p : points_in_sensor) {
         const std::uint64_t key = VoxelKey(T_world_sensor * p.cast<double>(), config.voxel_size);
@@ -54,25 +106,33 @@ void AddVoxels(VoxelSet& voxels, const Eigen::Isometry3d& T_world_sensor,
     }
     std::sort(scan_voxels.begin(), scan_voxels.end());
     scan_voxels.erase(std::unique(scan_voxels.begin(), scan_voxels.end()), scan_voxels.end());
-    VoxelSet merged;
-    merged.reserve(voxels.size() + scan_voxels.size());
-    std::set_union(voxels.begin(), voxels.end(), scan_voxels.begin(), scan_voxels.end(), std::back_inserter(merged));
-    merged.shrink_to_fit();
-    voxels.swap(merged);
+    if (voxels.size == 0) {
+        voxels = Pack(scan_voxels);
+        return;
+    }
+    const std::vector<std::uint64_t> held = Unpack(voxels);
+    std::vector<std::uint64_t> merged;
+    merged.reserve(held.size() + scan_voxels.size());
+    std::set_union(held.begin(), held.end(), scan_voxels.begin(), scan_voxels.end(), std::back_inserter(merged));
+    voxels = Pack(merged);
 }
 
 /// Eq. (5.1): |A n B| / min(|A|, |B|); 0 when either set is empty.
-double OverlapCoefficient(const VoxelSet& a, const VoxelSet& b) {
-    if (a.empty() || b.empty()) return 0.0;
+double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) {
+    if (a.size == 0 || b.size == 0) return 0.0;
     std::size_t common = 0;
-    auto ia = a.begin();
-    auto ib = b.begin();
-    while (ia != a.end() && ib != b.end()) {
-        if (*ia < *ib) ++ia;
-        else if (*ib < *ia) ++ib;
-        else { ++common; ++ia; ++ib; }
+    PackedReader ra(a), rb(b);
+    std::uint64_t ka = 0, kb = 0;
+    bool more = ra.Next(ka) && rb.Next(kb);
+    while (more) {
+        if (ka < kb) more = ra.Next(ka);
+        else if (kb < ka) more = rb.Next(kb);
+        else {
+            ++common;
+            more = ra.Next(ka) && rb.Next(kb);
+        }
     }
-    return static_cast<double>(common) / static_cast<double>(std::min(a.size(), b.size()));
+    return static_cast<double>(common) / static_cast<double>(std::min(a.size, b.size));
 }
 
 void CheckConfig(const GtClosureConfig& config) {
@@ -116,13 +176,37 @@ GroundTruthBuilder::GroundTruthBuilder(Poses T_world_sensor, const GtClosureConf
         }
     });
     needed_.assign(num_segments, 0);
+    last_later_.assign(num_segments, kNoSegment);
     for (std::size_t i = 0; i < num_segments; ++i) {
         for (const std::size_t j : later_of[i]) {
             candidates_.push_back({i, j, 0.0});
             needed_[i] = needed_[j] = 1;
+            last_later_[i] = j;  // later_of[i] is increasing
         }
     }
+    by_later_.resize(candidates_.size());
+    std::iota(by_later_.begin(), by_later_.end(), std::size_t{0});
+    std::stable_sort(by_later_.begin(), by_later_.end(),
+                     [&](std::size_t a, std::size_t b) { return candidates_[a].later < candidates_[b].later; });
     voxels_.resize(num_segments);
+}
+
+void GroundTruthBuilder::Settle(std::size_t next_scan) {
+    std::size_t end = settled_;
+    while (end < by_later_.size() && segments_[candidates_[by_later_[end]].later].last_scan < next_scan) ++end;
+    if (end == settled_) return;
+    tbb::parallel_for(settled_, end, [&](std::size_t k) {
+        GtSegmentPair& pair = candidates_[by_later_[k]];
+        pair.overlap = OverlapCoefficient(voxels_[pair.earlier], voxels_[pair.later]);
+    });
+    // A set is done with once its last pair is settled: as the earlier segment of its last later one,
+    // or as a later segment that no segment after it pairs with.
+    for (std::size_t k = settled_; k < end; ++k) {
+        const GtSegmentPair& pair = candidates_[by_later_[k]];
+        if (last_later_[pair.earlier] == pair.later) voxels_[pair.earlier] = PackedVoxels{};
+        if (last_later_[pair.later] == kNoSegment) voxels_[pair.later] = PackedVoxels{};
+    }
+    settled_ = end;
 }
 
 bool GroundTruthBuilder::NeedsScan(std::size_t index) const {
@@ -134,14 +218,21 @@ void GroundTruthBuilder::AddScan(std::size_t index, const std::vector<Eigen::Vec
     AddVoxels(voxels_[segment_of_scan_[index]], T_world_sensor_[index], points_in_sensor, config_);
 }
 
+std::size_t GroundTruthBuilder::HeldBytes() const {
+    std::size_t bytes = 0;
+    for (const auto& set : voxels_) bytes += set.bytes.capacity();
+    return bytes;
+}
+
 GtClosures GroundTruthBuilder::Finish() const {
     GtClosures result;
     result.segments = segments_;
     result.num_candidate_pairs = candidates_.size();
     // Step 3: the overlap coefficient of every candidate pair.
     std::vector<GtSegmentPair> candidates = candidates_;
-    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t k) {
-        candidates[k].overlap = OverlapCoefficient(voxels_[candidates[k].earlier], voxels_[candidates[k].later]);
+    tbb::parallel_for(settled_, by_later_.size(), [&](std::size_t k) {
+        GtSegmentPair& pair = candidates[by_later_[k]];
+        pair.overlap = OverlapCoefficient(voxels_[pair.earlier], voxels_[pair.later]);
     });
     // Step 4: closing segment pairs, and every scan pair across them.
     for (const auto& candidate : candidates) {

@@ -60,9 +60,17 @@ std::vector<GtSegment> CutSegments(const Poses& T_world_sensor, double segment_l
 GtClosures ComputeGroundTruthClosures(const Poses& T_world_sensor, const ScanPointsFn& scan_points,
                                       const GtClosureConfig& config);
 
+/// A segment's voxel set: its sorted keys stored as varint gaps (neighbouring keys differ by a few voxels
+/// along z or step to the next column: 1-3 bytes a key instead of 8).
+struct PackedVoxels {
+    std::vector<std::uint8_t> bytes;
+    std::size_t size = 0;  ///< keys
+};
+
 /// The same computation for scans that arrive one by one (a reader that streams, no random access):
 /// the candidates come from the poses at construction, so only scans of segments that take part in a
-/// candidate pair are needed, and only their voxel sets are kept.
+/// candidate pair are needed, and only their voxel sets are kept, packed, until their last candidate
+/// pair is settled.
 class GroundTruthBuilder {
   public:
     GroundTruthBuilder(Poses T_world_sensor, const GtClosureConfig& config);
@@ -70,18 +78,29 @@ class GroundTruthBuilder {
     bool NeedsScan(std::size_t index) const;
     /// Adds a scan's points (sensor frame). Safe to call concurrently for scans of different segments.
     void AddScan(std::size_t index, const std::vector<Eigen::Vector3f>& points_in_sensor);
-    /// Overlaps of the candidate pairs (parallel) and the closures. Scans never added count as empty.
+    /// For a caller that adds scans in order: every scan below `next_scan` has been added (or skipped).
+    /// Computes the overlap of each candidate pair whose later segment is complete and frees every set
+    /// no later pair needs, so a long sequence holds only the sets still waiting for a revisit. The
+    /// result is the same as without it. Not concurrent with AddScan.
+    void Settle(std::size_t next_scan);
+    /// Overlaps of the candidate pairs not settled yet (parallel) and the closures. Scans never added
+    /// count as empty.
     GtClosures Finish() const;
     const std::vector<GtSegment>& segments() const { return segments_; }
+    /// Bytes of the voxel sets held now.
+    std::size_t HeldBytes() const;
 
   private:
     Poses T_world_sensor_;
     GtClosureConfig config_;
     std::vector<GtSegment> segments_;
     std::vector<std::size_t> segment_of_scan_;
-    std::vector<GtSegmentPair> candidates_;
-    std::vector<char> needed_;                         // per segment
-    std::vector<std::vector<std::uint64_t>> voxels_;   // per segment: sorted, unique voxel keys
+    std::vector<GtSegmentPair> candidates_;  // by earlier, then later segment
+    std::vector<std::size_t> by_later_;      // candidates_ indices by later segment; the first settled_ are settled
+    std::size_t settled_ = 0;
+    std::vector<std::size_t> last_later_;    // per segment: the last later segment it pairs with (or none)
+    std::vector<char> needed_;               // per segment
+    std::vector<PackedVoxels> voxels_;       // per segment
 };
 
 /// 16 hex digits identifying the inputs: every pose bit, every config field and `salt` (e.g. the

@@ -50,6 +50,7 @@ DatasetPass ReadDatasetPass(const Poses& reference, const std::vector<std::size_
         const bool is_evaluated = evaluated < reference.size() && RunScan(scans, evaluated) == position;
         if (is_evaluated && !cached && builder.NeedsScan(evaluated)) builder.AddScan(evaluated, scan->points);
         evaluated += is_evaluated;
+        if (!cached) builder.Settle(evaluated);  // the sets no later scan needs are freed as the pass goes
         if (need_scan_context) pass.scan_context.push_back(MakeScanContext(scan->points, config.scan_context));
         progress.Update(++position);
     }

@@ -144,6 +144,31 @@ TEST_F(SquareLoop, StreamingBuilderMatchesBatchAndSkipsUnneededScans) {
         EXPECT_EQ(streamed.segment_pairs[k].overlap, batch.segment_pairs[k].overlap);
 }
 
+TEST_F(SquareLoop, SettlingAsTheScansArriveGivesTheSameClosuresAndFreesTheSetsOnTheWay) {
+    const auto batch = ComputeGroundTruthClosures(poses, points, config());
+    GroundTruthBuilder kept(poses, config()), settled(poses, config());
+    std::size_t peak = 0;
+    for (std::size_t scan = 0; scan < poses.size(); ++scan) {
+        if (kept.NeedsScan(scan)) {
+            kept.AddScan(scan, points(scan));
+            settled.AddScan(scan, points(scan));
+        }
+        settled.Settle(scan + 1);
+        peak = std::max(peak, settled.HeldBytes());
+    }
+    // Scans 0-39 wait for the second lap; the first lap's other sets go as soon as their last pair is done.
+    EXPECT_GT(kept.HeldBytes(), 0u);
+    EXPECT_LT(peak, kept.HeldBytes());
+    EXPECT_EQ(settled.HeldBytes(), 0u);
+    for (const GroundTruthBuilder* builder : {&kept, &settled}) {
+        const auto closures = builder->Finish();
+        EXPECT_EQ(closures.scan_pairs, batch.scan_pairs);
+        ASSERT_EQ(closures.segment_pairs.size(), batch.segment_pairs.size());
+        for (std::size_t k = 0; k < batch.segment_pairs.size(); ++k)
+            EXPECT_EQ(closures.segment_pairs[k].overlap, batch.segment_pairs[k].overlap);
+    }
+}
+
 TEST_F(SquareLoop, VoxelSubsamplingApproximatesTheOverlap) {
     const auto exact = ComputeGroundTruthClosures(poses, points, config());
     auto sampled_config = config();
