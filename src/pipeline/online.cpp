@@ -244,6 +244,7 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
                                            return query == ref + 1 && !RevisitsPredecessor(query, estimate);
                                        });
     std::size_t verified = 0;
+    const std::size_t first = closures_.size();
     std::vector<Eigen::Vector3f> query_points;  // pairs come grouped by query map: read and prepare each once
     std::optional<RefinementQuery> prepared;
     int query_loaded = -1;
@@ -267,6 +268,7 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
         Refine(record, query_points, query_map, confirm, from_odometry, prepared ? &*prepared : nullptr);
         verified += record.refinement.accepted;
         closures_.push_back(std::move(record));
+        if (on_proximity_progress) on_proximity_progress(closures_.size() - first, pairs.size());
     }
     Time("proximity", MillisecondsSince(start));
     return verified;

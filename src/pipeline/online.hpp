@@ -62,6 +62,9 @@ class ClosurePipeline {
     const std::map<std::string, StageTimer>& timings() const { return timings_; }
     /// Called with every closed map before it is dropped (e.g. to save its density image).
     std::function<void(const LocalMap&, const MapRecord&)> on_map_closed;
+    /// Called as the proximity pass at the end registers its map pairs (`done` of `total`): on a long
+    /// run that pass takes minutes.
+    std::function<void(std::size_t done, std::size_t total)> on_proximity_progress;
 
   private:
     PipelineUpdate ProcessMap(const LocalMap& map);

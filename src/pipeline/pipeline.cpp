@@ -288,7 +288,22 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                                                              : std::string("no scans read"));
     }
     if (planar_scans) planar_scans->Finish();
+    // The last map, the proximity pass over every map and the final pose graph: minutes on a long run.
+    if (!options.quiet) {
+        progress.Message("revisit: " + std::to_string(state.odometry.size()) + " scans read; closing: the last map, the " +
+                         "proximity pass over the corrected poses and the final pose graph");
+    }
+    std::optional<Progress> final_pass;
+    pipeline.on_proximity_progress = [&](std::size_t done, std::size_t total) {
+        if (!final_pass) final_pass.emplace(log, Progress::DetectMode(options.quiet), total, "map pairs (proximity pass)");
+        final_pass->Update(done);
+        if (done == total) {
+            final_pass->Finish(done);
+            final_pass.reset();
+        }
+    };
     for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
+    pipeline.on_proximity_progress = nullptr;
     if (const auto gate = pipeline.RmsGateUpdate()) state.setting_updates.push_back(*gate);
     if (const auto& drift = pipeline.DriftCalibration()) state.setting_updates.push_back(*drift);
     progress.Finish(state.odometry.size(), "maps " + std::to_string(pipeline.maps().size()) + "  closures " +

@@ -113,7 +113,9 @@ void WriteClosures(const RunFolder& run, const RunState& state) {
                            .Add(r.refinement.overlap).Add(r.refinement.rms).Add(r.refinement.num_correspondences)
                            .Add(r.refined).Add(r.refinement.accepted).Add(r.accepted).Add(r.graph_weight).Add(r.reason)
                            .Text());
-        WriteClosureDetail(ClosureDetailFile(run, i), c);
+        // The density detector's keypoints within the run are its maps' in database.bin; the elevation
+        // ablation's images are its own, so its closures keep theirs (and so would another session's pair).
+        WriteClosureDetail(ClosureDetailFile(run, i), c, r.method != "density" || c.query_session != c.ref_session);
     }
     WriteLines(run.closures_csv(), header, rows);
 }
@@ -176,10 +178,16 @@ int KeypointsOfMap(const std::vector<MapRecordSummary>& maps, int id) {
 
 }  // namespace
 
-void WriteClosureDetail(const fs::path& file, const Closure& c) {
-    // Only the matches: both maps' keypoints are in database.bin already (the report reads them from there),
-    // and here they were ~95% of every file (one file per candidate: 9 MB of a 6,600-scan highway's folder).
+void WriteClosureDetail(const fs::path& file, const Closure& c, bool with_keypoints) {
+    // Without keypoints when they are database.bin's (the report reads them from there): they were ~95%
+    // of every file (one file per candidate: 9 MB of a 6,600-scan highway's folder).
     json j;
+    if (with_keypoints) {
+        j["query_keypoints"] = json::array();
+        for (const auto& k : c.query_keypoints) j["query_keypoints"].push_back({k.x(), k.y()});
+        j["ref_keypoints"] = json::array();
+        for (const auto& k : c.ref_keypoints) j["ref_keypoints"].push_back({k.x(), k.y()});
+    }
     j["matches"] = json::array();
     for (std::size_t i = 0; i < c.matches.size(); ++i) {
         const auto& m = c.matches[i];

@@ -12,10 +12,10 @@ void WriteRunState(const RunFolder& run, const RunState& state);
 /// Reads what WriteRunState wrote; throws DatasetError naming the file on anything malformed.
 RunState ReadRunState(const RunFolder& run);
 
-/// The closure's matches (the report draws them over both maps' keypoints, which database.bin holds).
-/// Reading checks every match against the maps' keypoint counts (local_maps.csv); a file of an older run
-/// that still carries the keypoints is read with them and checked against those.
-void WriteClosureDetail(const std::filesystem::path& file, const Closure& closure);
+/// The closure's matches, and its keypoints when `with_keypoints` (the density detector's are the maps' in
+/// database.bin: the report draws them from there). Reading checks every match against the file's
+/// keypoints when it has them, else against the maps' keypoint counts (local_maps.csv).
+void WriteClosureDetail(const std::filesystem::path& file, const Closure& closure, bool with_keypoints);
 void ReadClosureDetail(const std::filesystem::path& file, Closure& closure, int num_query_keypoints, int num_ref_keypoints);
 
 }  // namespace revisit

@@ -35,7 +35,7 @@ std::string ReadText(const fs::path& file) {
 TEST(ClosureDetail, HoldsTheMatchesOnlyAndReadsThemBackExactly) {
     test::TempDir dir;
     const Closure written = DetectedPair();
-    WriteClosureDetail(dir / "0000.json", written);
+    WriteClosureDetail(dir / "0000.json", written, false);
     const std::string text = ReadText(dir / "0000.json");
     EXPECT_EQ(text.find("keypoints"), std::string::npos) << "the keypoints are database.bin's";
     EXPECT_LT(text.size(), 1000u);
@@ -54,7 +54,7 @@ TEST(ClosureDetail, HoldsTheMatchesOnlyAndReadsThemBackExactly) {
 
 TEST(ClosureDetail, AMatchBeyondTheMapsKeypointsIsAnErrorNamingTheFile) {
     test::TempDir dir;
-    WriteClosureDetail(dir / "0001.json", DetectedPair());
+    WriteClosureDetail(dir / "0001.json", DetectedPair(), false);
     Closure read;
     // The reference map has 280 keypoints; index 279 is the last. A map of 250 cannot hold the matches.
     try {
@@ -63,6 +63,18 @@ TEST(ClosureDetail, AMatchBeyondTheMapsKeypointsIsAnErrorNamingTheFile) {
     } catch (const DatasetError& e) {
         EXPECT_NE(std::string(e.what()).find("0001.json"), std::string::npos) << e.what();
     }
+}
+
+TEST(ClosureDetail, KeypointsNotInTheDatabaseAreKeptAndBoundTheMatches) {
+    // The elevation ablation matches images of its own: their keypoints are only in the closure's file.
+    test::TempDir dir;
+    const Closure written = DetectedPair();
+    WriteClosureDetail(dir / "0004.json", written, true);
+    Closure read;
+    ReadClosureDetail(dir / "0004.json", read, 0, 0);
+    EXPECT_EQ(read.query_keypoints, written.query_keypoints);
+    EXPECT_EQ(read.ref_keypoints, written.ref_keypoints);
+    EXPECT_EQ(read.matches.size(), written.matches.size());
 }
 
 TEST(ClosureDetail, AnOlderFileWithKeypointsIsReadWithThem) {
