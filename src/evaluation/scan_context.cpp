@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "evaluation/ring_key_index.hpp"
+#include "evaluation/scan_context_file.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -118,12 +119,15 @@ ScanContextMatch ScanContextDistance(const ScanContextDescriptor& query, const S
     return best;
 }
 
-std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContextDescriptor>& descriptors,
-                                                    const ScanContextConfig& config) {
+namespace {
+
+/// The search over ring keys held in memory; `descriptor(scan)` gives a scan's whole descriptor (from
+/// memory or from a file) for the candidates' distances.
+template <class DescriptorOf>
+std::vector<ScanContextCandidate> Search(const std::vector<Eigen::VectorXf>& ring_keys, const DescriptorOf& descriptor,
+                                         const ScanContextConfig& config) {
     CheckConfig(config);
-    const std::size_t n = descriptors.size();
-    std::vector<Eigen::VectorXf> ring_keys(n);
-    for (std::size_t s = 0; s < n; ++s) ring_keys[s] = descriptors[s].ring_key;
+    const std::size_t n = ring_keys.size();
     const RingKeyIndex index(ring_keys, n);
     std::vector<std::vector<ScanContextCandidate>> per_query(n);
     tbb::parallel_for(config.exclude_recent, std::max(n, config.exclude_recent), [&](std::size_t q) {
@@ -131,14 +135,30 @@ std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContex
         const std::size_t counter = q - config.exclude_recent;
         const std::size_t rebuilt_at = config.exclude_recent + (counter / config.rebuild_period) * config.rebuild_period;
         const std::size_t searchable = rebuilt_at + 1 - config.exclude_recent;
-        for (const auto& [squared, s] : index.Nearest(ring_keys[q], searchable, config.num_candidates)) {
-            const ScanContextMatch match = ScanContextDistance(descriptors[q], descriptors[s], config);
+        const auto nearest = index.Nearest(ring_keys[q], searchable, config.num_candidates);
+        if (nearest.empty()) return;
+        decltype(auto) query = descriptor(q);
+        for (const auto& [squared, s] : nearest) {
+            const ScanContextMatch match = ScanContextDistance(query, descriptor(s), config);
             per_query[q].push_back({q, s, match.distance, match.shift});
         }
     });
     std::vector<ScanContextCandidate> all;
     for (auto& candidates : per_query) all.insert(all.end(), candidates.begin(), candidates.end());
     return all;
+}
+
+}  // namespace
+
+std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContextDescriptor>& descriptors,
+                                                    const ScanContextConfig& config) {
+    std::vector<Eigen::VectorXf> ring_keys(descriptors.size());
+    for (std::size_t s = 0; s < descriptors.size(); ++s) ring_keys[s] = descriptors[s].ring_key;
+    return Search(ring_keys, [&](std::size_t scan) -> const ScanContextDescriptor& { return descriptors[scan]; }, config);
+}
+
+std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config) {
+    return Search(descriptors.ring_keys(), [&](std::size_t scan) { return descriptors.Get(scan); }, config);
 }
 
 std::vector<ScoredPair> ScanContextPairs(const std::vector<ScanContextCandidate>& candidates) {

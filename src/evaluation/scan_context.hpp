@@ -59,6 +59,9 @@ struct ScanContextCandidate {
 /// over queries.
 std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContextDescriptor>& descriptors,
                                                     const ScanContextConfig& config);
+class ScanContextFile;
+/// The same search over descriptors kept in a file (scan_context_file.hpp): the same candidates.
+std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config);
 
 /// Candidates as scored scan pairs (score = distance: sweep with Acceptance::kScoreAtMost).
 std::vector<ScoredPair> ScanContextPairs(const std::vector<ScanContextCandidate>& candidates);

@@ -11,6 +11,7 @@
 
 #include "evaluation/ground_truth_closures.hpp"
 #include "evaluation/scan_context.hpp"
+#include "evaluation/scan_context_file.hpp"
 #include "io/prefetch_reader.hpp"
 #include "io/reader.hpp"
 #include "pipeline/covered_run.hpp"
@@ -25,16 +26,19 @@ namespace {
 /// Ground-truth closures and ScanContext descriptors from one pass over the scans of the run.
 struct DatasetPass {
     GtClosures ground_truth;  ///< over the evaluated scans (positions of `reference`)
-    std::vector<ScanContextDescriptor> scan_context;  ///< one per scan of the run
+    std::unique_ptr<ScanContextFile> scan_context;  ///< one per scan of the run; null when not asked for
 };
 
 /// `reference` holds a pose per evaluated scan, `scans` each one's position in the run (empty: every
 /// scan of the run, `run_scans` of them, is evaluated).
 DatasetPass ReadDatasetPass(const Poses& reference, const std::vector<std::size_t>& scans, std::size_t run_scans,
                             const RunOptions& options, const PipelineConfig& config, const std::optional<GtClosures>& cached,
-                            std::ostream& log) {
+                            const fs::path& scratch_file, std::ostream& log) {
     DatasetPass pass;
     const bool need_scan_context = config.output.scan_context;
+    if (need_scan_context) {
+        pass.scan_context = std::make_unique<ScanContextFile>(scratch_file, config.scan_context.num_rings, config.scan_context.num_sectors);
+    }
     if (cached) pass.ground_truth = *cached;
     if (cached && !need_scan_context) return pass;
     ReaderOptions reader_options = MakeReaderOptions(config.input);
@@ -51,7 +55,7 @@ DatasetPass ReadDatasetPass(const Poses& reference, const std::vector<std::size_
         if (is_evaluated && !cached && builder.NeedsScan(evaluated)) builder.AddScan(evaluated, scan->points);
         evaluated += is_evaluated;
         if (!cached) builder.Settle(evaluated);  // the sets no later scan needs are freed as the pass goes
-        if (need_scan_context) pass.scan_context.push_back(MakeScanContext(scan->points, config.scan_context));
+        if (need_scan_context) pass.scan_context->Add(MakeScanContext(scan->points, config.scan_context));
         progress.Update(++position);
     }
     progress.Finish(position);
@@ -235,7 +239,9 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
     const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth, salt);
     const fs::path cache_file = run.root() / "ground_truth_closures.txt";  // at the evaluated positions
     const auto cached = ReadCache(cache_file, key);
-    const DatasetPass pass = ReadDatasetPass(state.reference, scans, run_scans, options, config, cached, log);
+    // ScanContext's descriptors wait in a scratch file of the run folder until the search (removed after).
+    const DatasetPass pass = ReadDatasetPass(state.reference, scans, run_scans, options, config, cached,
+                                             run.root() / "scan_context.scratch", log);
     if (!cached) {
         WriteFileAtomically(cache_file, [&](std::ostream& out) { WriteGroundTruthClosures(out, pass.ground_truth, key); });
     }
@@ -256,8 +262,8 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
         e.sweeps["elevation"] = ScoreMapClosures(ForEval(state, "elevation"), state.odometry, gt.scan_pairs, config.predicted);
         e.methods.push_back(SummarizeMethod("elevation maps", e.sweeps["elevation"]));
     }
-    if (!pass.scan_context.empty()) {
-        const auto candidates = EvaluatedCandidates(SearchScanContext(pass.scan_context, config.scan_context), scans);
+    if (pass.scan_context && pass.scan_context->size() > 0) {
+        const auto candidates = EvaluatedCandidates(SearchScanContext(*pass.scan_context, config.scan_context), scans);
         e.sweeps["scan_context"] = ScoreScanContext(candidates, gt.scan_pairs);
         e.methods.push_back(SummarizeMethod("ScanContext", e.sweeps["scan_context"]));
     }

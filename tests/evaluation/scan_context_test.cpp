@@ -1,14 +1,19 @@
 #include "evaluation/scan_context.hpp"
+#include "evaluation/scan_context_file.hpp"
+#include "test_data.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <random>
 
 namespace revisit {
 namespace {
+namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -95,6 +100,24 @@ TEST(SearchScanContext, FollowsTheRebuildScheduleAndFindsTheRevisit) {
     }
     ASSERT_TRUE(found_revisit);
     EXPECT_LT(revisit_distance, best_other_of_110 - 0.2);  // the revisit is by far the best candidate
+    // Held in a scratch file instead of memory: the same candidates, distances bit for bit; the file is
+    // gone afterwards, and a stale one (an interrupted evaluation's) is replaced.
+    test::TempDir dir;
+    std::ofstream(dir / "sc.scratch") << "left by an interrupted run";
+    {
+        ScanContextFile stored(dir / "sc.scratch", config.num_rings, config.num_sectors);
+        for (const auto& descriptor : descriptors) stored.Add(descriptor);
+        EXPECT_EQ(stored.Get(37).bins, descriptors[37].bins);
+        const auto from_file = SearchScanContext(stored, config);
+        ASSERT_EQ(from_file.size(), candidates.size());
+        for (std::size_t k = 0; k < candidates.size(); ++k) {
+            EXPECT_EQ(from_file[k].query, candidates[k].query);
+            EXPECT_EQ(from_file[k].candidate, candidates[k].candidate);
+            EXPECT_EQ(from_file[k].distance, candidates[k].distance);
+            EXPECT_EQ(from_file[k].shift, candidates[k].shift);
+        }
+    }
+    EXPECT_FALSE(fs::exists(dir / "sc.scratch"));
     const auto pairs = ScanContextPairs(candidates);
     ASSERT_EQ(pairs.size(), candidates.size());
     EXPECT_LT(pairs.back().pair.first, pairs.back().pair.second);
