@@ -163,50 +163,73 @@ GroundTruthBuilder::GroundTruthBuilder(Poses T_world_sensor, const GtClosureConf
     segment_of_scan_.resize(T_world_sensor_.size());
     for (std::size_t s = 0; s < num_segments; ++s)
         for (std::size_t scan = segments_[s].first_scan; scan <= segments_[s].last_scan; ++scan) segment_of_scan_[scan] = s;
-
-    // Step 2 of METHOD.md section 7: candidates from the poses alone (cheap).
-    const double min_gap = config_.min_travel > 0.0 ? config_.min_travel : config_.travel_gap_ranges * config_.max_range;
-    std::vector<std::vector<std::size_t>> later_of(num_segments);
-    tbb::parallel_for(std::size_t{0}, num_segments, [&](std::size_t i) {
-        const Eigen::Vector3d origin_i = T_world_sensor_[segments_[i].first_scan].translation();
-        for (std::size_t j = i + 1; j < num_segments; ++j) {
-            if (segments_[j].start_travel - segments_[i].start_travel < min_gap) continue;
-            const Eigen::Vector3d origin_j = T_world_sensor_[segments_[j].first_scan].translation();
-            if ((origin_j - origin_i).norm() < config_.max_range) later_of[i].push_back(j);
-        }
-    });
+    // Segment origins in cells of max_range: a pair closer than that lies in neighbouring cells.
+    for (std::size_t s = 0; s < num_segments; ++s) grid_[CellOf(s)].push_back(s);
+    // Step 2 of METHOD.md section 7: candidates from the poses alone (cheap). They are not kept (a long
+    // city drive has millions): only which segments take part, and the last later partner of each.
     needed_.assign(num_segments, 0);
     last_later_.assign(num_segments, kNoSegment);
-    for (std::size_t i = 0; i < num_segments; ++i) {
-        for (const std::size_t j : later_of[i]) {
-            candidates_.push_back({i, j, 0.0});
+    for (std::size_t j = 0; j < num_segments; ++j) {
+        for (const std::size_t i : EarlierPartners(j)) {
             needed_[i] = needed_[j] = 1;
-            last_later_[i] = j;  // later_of[i] is increasing
+            last_later_[i] = j;  // j increases
         }
     }
-    by_later_.resize(candidates_.size());
-    std::iota(by_later_.begin(), by_later_.end(), std::size_t{0});
-    std::stable_sort(by_later_.begin(), by_later_.end(),
-                     [&](std::size_t a, std::size_t b) { return candidates_[a].later < candidates_[b].later; });
     voxels_.resize(num_segments);
 }
 
-void GroundTruthBuilder::Settle(std::size_t next_scan) {
-    std::size_t end = settled_;
-    while (end < by_later_.size() && segments_[candidates_[by_later_[end]].later].last_scan < next_scan) ++end;
-    if (end == settled_) return;
-    tbb::parallel_for(settled_, end, [&](std::size_t k) {
-        GtSegmentPair& pair = candidates_[by_later_[k]];
-        pair.overlap = OverlapCoefficient(voxels_[pair.earlier], voxels_[pair.later]);
-    });
-    // A set is done with once its last pair is settled: as the earlier segment of its last later one,
-    // or as a later segment that no segment after it pairs with.
-    for (std::size_t k = settled_; k < end; ++k) {
-        const GtSegmentPair& pair = candidates_[by_later_[k]];
-        if (last_later_[pair.earlier] == pair.later) voxels_[pair.earlier] = PackedVoxels{};
-        if (last_later_[pair.later] == kNoSegment) voxels_[pair.later] = PackedVoxels{};
+Eigen::Vector3i GroundTruthBuilder::CellOf(std::size_t segment) const {
+    const Eigen::Vector3d origin = T_world_sensor_[segments_[segment].first_scan].translation();
+    return (origin / config_.max_range).array().floor().cast<int>();
+}
+
+std::vector<std::size_t> GroundTruthBuilder::EarlierPartners(std::size_t j) const {
+    const double min_gap = config_.min_travel > 0.0 ? config_.min_travel : config_.travel_gap_ranges * config_.max_range;
+    const Eigen::Vector3d origin_j = T_world_sensor_[segments_[j].first_scan].translation();
+    const Eigen::Vector3i cell = CellOf(j);
+    std::vector<std::size_t> partners;
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+                const auto it = grid_.find(cell + Eigen::Vector3i(dx, dy, dz));
+                if (it == grid_.end()) continue;
+                for (const std::size_t i : it->second) {
+                    if (i >= j) break;  // each cell lists its segments in order
+                    if (segments_[j].start_travel - segments_[i].start_travel < min_gap) continue;
+                    const Eigen::Vector3d origin_i = T_world_sensor_[segments_[i].first_scan].translation();
+                    if ((origin_j - origin_i).norm() < config_.max_range) partners.push_back(i);
+                }
+            }
+        }
     }
-    settled_ = end;
+    std::sort(partners.begin(), partners.end());
+    return partners;
+}
+
+void GroundTruthBuilder::Settle(std::size_t next_scan) {
+    // Complete segments in batches: their pairs' overlaps in parallel, a bounded list at a time.
+    constexpr std::size_t kBatchPairs = 1 << 16;
+    while (settled_ < segments_.size() && segments_[settled_].last_scan < next_scan) {
+        std::vector<GtSegmentPair> pairs;
+        std::size_t end = settled_;
+        while (end < segments_.size() && segments_[end].last_scan < next_scan && pairs.size() < kBatchPairs) {
+            for (const std::size_t i : EarlierPartners(end)) pairs.push_back({i, end, 0.0});
+            ++end;
+        }
+        tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+            pairs[k].overlap = OverlapCoefficient(voxels_[pairs[k].earlier], voxels_[pairs[k].later]);
+        });
+        num_candidates_ += pairs.size();
+        for (const auto& pair : pairs)
+            if (pair.overlap > config_.min_overlap) closing_.push_back(pair);
+        // A set is done with once its last pair is settled: as the earlier segment of its last later one,
+        // or as a later segment that no segment after it pairs with.
+        for (const auto& pair : pairs)
+            if (last_later_[pair.earlier] == pair.later) voxels_[pair.earlier] = PackedVoxels{};
+        for (std::size_t j = settled_; j < end; ++j)
+            if (last_later_[j] == kNoSegment) voxels_[j] = PackedVoxels{};
+        settled_ = end;
+    }
 }
 
 bool GroundTruthBuilder::NeedsScan(std::size_t index) const {
@@ -224,22 +247,20 @@ std::size_t GroundTruthBuilder::HeldBytes() const {
     return bytes;
 }
 
-GtClosures GroundTruthBuilder::Finish() const {
+GtClosures GroundTruthBuilder::Finish() {
+    // Step 3: the overlap coefficient of every candidate pair not settled yet.
+    Settle(std::numeric_limits<std::size_t>::max());
     GtClosures result;
     result.segments = segments_;
-    result.num_candidate_pairs = candidates_.size();
-    // Step 3: the overlap coefficient of every candidate pair.
-    std::vector<GtSegmentPair> candidates = candidates_;
-    tbb::parallel_for(settled_, by_later_.size(), [&](std::size_t k) {
-        GtSegmentPair& pair = candidates[by_later_[k]];
-        pair.overlap = OverlapCoefficient(voxels_[pair.earlier], voxels_[pair.later]);
+    result.num_candidate_pairs = num_candidates_;
+    result.segment_pairs = closing_;
+    std::sort(result.segment_pairs.begin(), result.segment_pairs.end(), [](const GtSegmentPair& a, const GtSegmentPair& b) {
+        return std::make_pair(a.earlier, a.later) < std::make_pair(b.earlier, b.later);
     });
-    // Step 4: closing segment pairs, and every scan pair across them.
-    for (const auto& candidate : candidates) {
-        if (!(candidate.overlap > config_.min_overlap)) continue;
-        result.segment_pairs.push_back(candidate);
-        const GtSegment& a = segments_[candidate.earlier];
-        const GtSegment& b = segments_[candidate.later];
+    // Step 4: every scan pair across the closing segment pairs.
+    for (const auto& pair : result.segment_pairs) {
+        const GtSegment& a = segments_[pair.earlier];
+        const GtSegment& b = segments_[pair.later];
         for (std::size_t s = a.first_scan; s <= a.last_scan; ++s)
             for (std::size_t t = b.first_scan; t <= b.last_scan; ++t) result.scan_pairs.push_back(MakeScanPair(s, t));
     }

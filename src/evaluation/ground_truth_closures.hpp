@@ -12,6 +12,7 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -84,23 +85,33 @@ class GroundTruthBuilder {
     /// result is the same as without it. Not concurrent with AddScan.
     void Settle(std::size_t next_scan);
     /// Overlaps of the candidate pairs not settled yet (parallel) and the closures. Scans never added
-    /// count as empty.
-    GtClosures Finish() const;
+    /// count as empty. Settles everything: calling it again gives the same closures.
+    GtClosures Finish();
     const std::vector<GtSegment>& segments() const { return segments_; }
     /// Bytes of the voxel sets held now.
     std::size_t HeldBytes() const;
 
   private:
+    struct CellHash {
+        std::size_t operator()(const Eigen::Vector3i& c) const {
+            return std::size_t(c.x()) * 73856093u ^ std::size_t(c.y()) * 19349663u ^ std::size_t(c.z()) * 83492791u;
+        }
+    };
+    Eigen::Vector3i CellOf(std::size_t segment) const;
+    /// The candidates of segment j: earlier segments within max_range, at least the travel gap before it.
+    std::vector<std::size_t> EarlierPartners(std::size_t j) const;
+
     Poses T_world_sensor_;
     GtClosureConfig config_;
     std::vector<GtSegment> segments_;
     std::vector<std::size_t> segment_of_scan_;
-    std::vector<GtSegmentPair> candidates_;  // by earlier, then later segment
-    std::vector<std::size_t> by_later_;      // candidates_ indices by later segment; the first settled_ are settled
-    std::size_t settled_ = 0;
-    std::vector<std::size_t> last_later_;    // per segment: the last later segment it pairs with (or none)
+    std::unordered_map<Eigen::Vector3i, std::vector<std::size_t>, CellHash> grid_;  // segments by origin cell
     std::vector<char> needed_;               // per segment
+    std::vector<std::size_t> last_later_;    // per segment: the last later segment it pairs with (or none)
     std::vector<PackedVoxels> voxels_;       // per segment
+    std::size_t settled_ = 0;                // segments [0, settled_) have every pair settled
+    std::size_t num_candidates_ = 0;         // pairs settled
+    std::vector<GtSegmentPair> closing_;     // settled pairs with overlap > min_overlap
 };
 
 /// 16 hex digits identifying the inputs: every pose bit, every config field and `salt` (e.g. the

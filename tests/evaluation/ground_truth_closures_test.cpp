@@ -160,7 +160,7 @@ TEST_F(SquareLoop, SettlingAsTheScansArriveGivesTheSameClosuresAndFreesTheSetsOn
     EXPECT_GT(kept.HeldBytes(), 0u);
     EXPECT_LT(peak, kept.HeldBytes());
     EXPECT_EQ(settled.HeldBytes(), 0u);
-    for (const GroundTruthBuilder* builder : {&kept, &settled}) {
+    for (GroundTruthBuilder* builder : {&kept, &settled}) {
         const auto closures = builder->Finish();
         EXPECT_EQ(closures.scan_pairs, batch.scan_pairs);
         ASSERT_EQ(closures.segment_pairs.size(), batch.segment_pairs.size());
