@@ -57,7 +57,7 @@ int RunEval(const EvalOptions& o) {
     const PipelineConfig config = LoadConfig({run.config().string()}, {});
     RunOptions options = ReadRunOptions(run);
     options.quiet = o.quiet;
-    const RunState state = ReadRunState(run);
+    const RunState state = ReadRunState(run, false);
     const auto evaluation = EvaluateRun(run, state, options, config, std::cerr);
     if (!evaluation) {
         std::cerr << "revisit: " << o.run << ": the run has no reference poses; nothing to evaluate (run with --gt FILE)\n";

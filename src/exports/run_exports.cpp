@@ -23,7 +23,7 @@ fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
     }
     if (options.per_scan && options.format != "g2o") throw ConfigError("--per-scan applies to --format g2o only");
     const RunFolder run = RunFolder::Open(run_folder);
-    RunState state = ReadRunState(run);
+    RunState state = ReadRunState(run, false);
     for (const auto& entry : options.overrides) {
         if (entry.rfind("occupancy.", 0) != 0) {
             throw ConfigError("--set " + entry + ": export takes occupancy.* keys only; the graph and the closures are the run's");

@@ -20,7 +20,7 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
         const auto start = std::chrono::steady_clock::now();
         // From the run folder as written, as `revisit eval` reads it: the poses' files hold 9 decimals,
         // so the metrics (and the ground truth's cache key) are the ones a later eval recomputes.
-        evaluation = EvaluateRun(run, ReadRunState(run), options, config, log);
+        evaluation = EvaluateRun(run, ReadRunState(run, false), options, config, log);
         after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         // Ctrl-C after the chain: the run folder is complete; the report is skipped (an earlier one stays).
         if (config.output.write_report && !InterruptRequested()) {

@@ -113,9 +113,10 @@ void WriteClosures(const RunFolder& run, const RunState& state) {
                            .Add(r.refinement.overlap).Add(r.refinement.rms).Add(r.refinement.num_correspondences)
                            .Add(r.refined).Add(r.refinement.accepted).Add(r.accepted).Add(r.graph_weight).Add(r.reason)
                            .Text());
-        // The density detector's keypoints within the run are its maps' in database.bin; the elevation
-        // ablation's images are its own, so its closures keep theirs (and so would another session's pair).
-        WriteClosureDetail(ClosureDetailFile(run, i), c, r.method != "density" || c.query_session != c.ref_session);
+        // The density detector's keypoints within the run are its maps' in database.bin (a pair across
+        // sessions keeps its own). The elevation ablation matched images of its own, which no page draws
+        // (the pages show density images): its matches get no file (95% of the closure files before).
+        if (r.method != "elevation") WriteClosureDetail(ClosureDetailFile(run, i), c, c.query_session != c.ref_session);
     }
     WriteLines(run.closures_csv(), header, rows);
 }
@@ -265,7 +266,7 @@ void WriteRunState(const RunFolder& run, const RunState& state) {
                                {"revisit_version", "0.1.0"}, {"files", ManifestJson(ListRunFiles(run))}});
 }
 
-RunState ReadRunState(const RunFolder& run) {
+RunState ReadRunState(const RunFolder& run, bool closure_details) {
     RunState state;
     const json info = ReadJson(run.run_info());
     CheckRunManifest(run, info);  // before any file is trusted
@@ -358,7 +359,7 @@ RunState ReadRunState(const RunFolder& run) {
         r.reason = closures.Text(i, "reason");
         r.refinement.reason = r.reason;
         const auto detail = ClosureDetailFile(run, i);
-        if (fs::exists(detail)) ReadClosureDetail(detail, c, KeypointsOfMap(state.maps, c.query_id), KeypointsOfMap(state.maps, c.ref_id));
+        if (closure_details && fs::exists(detail)) ReadClosureDetail(detail, c, KeypointsOfMap(state.maps, c.query_id), KeypointsOfMap(state.maps, c.ref_id));
         state.closures.push_back(std::move(r));
     }
     ReadComparisons(run, state);

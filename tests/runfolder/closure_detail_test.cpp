@@ -66,7 +66,7 @@ TEST(ClosureDetail, AMatchBeyondTheMapsKeypointsIsAnErrorNamingTheFile) {
 }
 
 TEST(ClosureDetail, KeypointsNotInTheDatabaseAreKeptAndBoundTheMatches) {
-    // The elevation ablation matches images of its own: their keypoints are only in the closure's file.
+    // A pair across sessions: its keypoints are not the run's database maps', so the file keeps them.
     test::TempDir dir;
     const Closure written = DetectedPair();
     WriteClosureDetail(dir / "0004.json", written, true);
