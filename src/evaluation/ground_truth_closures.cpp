@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 #include <cmath>
 #include <cstdint>
 #include <utility>
