@@ -16,22 +16,14 @@ std::string Problem(const std::string& what) { return what + ": " + std::strerro
 
 }  // namespace
 
-ScanContextFile::ScanContextFile(std::filesystem::path file, int rows, int cols)
-    : file_(std::move(file)), rows_(rows), cols_(cols) {
-    // A scratch file an interrupted evaluation left is this class's own: removed (a link in its place is
-    // removed, never followed). Then a new file only: O_EXCL refuses anything that appears meanwhile.
-    std::error_code ignored;
-    if (std::filesystem::is_regular_file(std::filesystem::symlink_status(file_)) ||
-        std::filesystem::is_symlink(std::filesystem::symlink_status(file_)))
-        std::filesystem::remove(file_, ignored);
-    fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);
-    if (fd_ < 0) throw DatasetError(file_, Problem("cannot create the scratch file of ScanContext descriptors"));
+ScanContextFile::ScanContextFile(const std::filesystem::path& file, int rows, int cols)
+    : scratch_(file), rows_(rows), cols_(cols) {
+    read_fd_ = ::open(scratch_.path().c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    if (read_fd_ < 0) throw DatasetError(scratch_.path(), Problem("cannot read back the scratch file of ScanContext descriptors"));
 }
 
 ScanContextFile::~ScanContextFile() {
-    if (fd_ >= 0) ::close(fd_);
-    std::error_code ignored;
-    std::filesystem::remove(file_, ignored);
+    if (read_fd_ >= 0) ::close(read_fd_);
 }
 
 void ScanContextFile::Add(const ScanContextDescriptor& descriptor) {
@@ -44,9 +36,9 @@ void ScanContextFile::Add(const ScanContextDescriptor& descriptor) {
     const std::size_t bytes = sizeof(float) * floats;
     const auto* data = reinterpret_cast<const char*>(record.data());
     for (std::size_t written = 0; written < bytes;) {
-        const ssize_t n = ::pwrite(fd_, data + written, bytes - written, off_t(size() * bytes + written));
+        const ssize_t n = ::pwrite(scratch_.descriptor(), data + written, bytes - written, off_t(size() * bytes + written));
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw DatasetError(file_, Problem("cannot write a ScanContext descriptor"));
+        if (n <= 0) throw DatasetError(scratch_.path(), Problem("cannot write a ScanContext descriptor"));
         written += std::size_t(n);
     }
     ring_keys_.push_back(descriptor.ring_key);
@@ -58,9 +50,9 @@ ScanContextDescriptor ScanContextFile::Get(std::size_t scan) const {
     std::vector<float> record(cells + std::size_t(cols_));
     auto* data = reinterpret_cast<char*>(record.data());
     for (std::size_t read = 0; read < bytes;) {
-        const ssize_t n = ::pread(fd_, data + read, bytes - read, off_t(scan * bytes + read));
+        const ssize_t n = ::pread(read_fd_, data + read, bytes - read, off_t(scan * bytes + read));
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw DatasetError(file_, Problem("cannot read back ScanContext descriptor " + std::to_string(scan)));
+        if (n <= 0) throw DatasetError(scratch_.path(), Problem("cannot read back ScanContext descriptor " + std::to_string(scan)));
         read += std::size_t(n);
     }
     ScanContextDescriptor descriptor;

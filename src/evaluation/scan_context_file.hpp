@@ -3,6 +3,7 @@
 /// key go to a scratch file as they are made, only the ring keys (what the search tree needs) stay in
 /// memory, and a candidate's descriptor is read back when its distance is computed. 100,000 scans of
 /// 20 x 60 bins are ~500 MB as descriptors in memory, ~10 MB of ring keys here.
+#include "core/atomic_file.hpp"
 #include "evaluation/scan_context.hpp"
 
 #include <Eigen/Core>
@@ -14,9 +15,10 @@ namespace revisit {
 
 class ScanContextFile {
   public:
-    /// Creates `file` for descriptors of `rows` x `cols` bins (a file or link of that name left by an
-    /// interrupted run is removed first, never followed). The destructor removes the file.
-    ScanContextFile(std::filesystem::path file, int rows, int cols);
+    /// Creates an exclusive temporary beside `file` (core/atomic_file.hpp's TemporaryPath: a fresh name,
+    /// no link followed, nothing at `file` touched) for descriptors of `rows` x `cols` bins. The
+    /// destructor removes it.
+    ScanContextFile(const std::filesystem::path& file, int rows, int cols);
     ~ScanContextFile();
     ScanContextFile(const ScanContextFile&) = delete;
     ScanContextFile& operator=(const ScanContextFile&) = delete;
@@ -30,8 +32,8 @@ class ScanContextFile {
     ScanContextDescriptor Get(std::size_t scan) const;
 
   private:
-    std::filesystem::path file_;
-    int fd_ = -1;
+    TemporaryPath scratch_;  ///< written through its descriptor, never committed
+    int read_fd_ = -1;       ///< the same file opened for reading (TemporaryPath's is write only)
     int rows_ = 0;
     int cols_ = 0;
     std::vector<Eigen::VectorXf> ring_keys_;

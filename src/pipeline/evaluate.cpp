@@ -239,7 +239,7 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
     const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth, salt);
     const fs::path cache_file = run.root() / "ground_truth_closures.txt";  // at the evaluated positions
     const auto cached = ReadCache(cache_file, key);
-    // ScanContext's descriptors wait in a scratch file of the run folder until the search (removed after).
+    // ScanContext's descriptors wait in an exclusive temporary of the run folder until the search (removed after).
     const DatasetPass pass = ReadDatasetPass(state.reference, scans, run_scans, options, config, cached,
                                              run.root() / "scan_context.scratch", log);
     if (!cached) {

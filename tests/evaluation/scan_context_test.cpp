@@ -100,10 +100,10 @@ TEST(SearchScanContext, FollowsTheRebuildScheduleAndFindsTheRevisit) {
     }
     ASSERT_TRUE(found_revisit);
     EXPECT_LT(revisit_distance, best_other_of_110 - 0.2);  // the revisit is by far the best candidate
-    // Held in a scratch file instead of memory: the same candidates, distances bit for bit; the file is
-    // gone afterwards, and a stale one (an interrupted evaluation's) is replaced.
+    // Held in a scratch file instead of memory: the same candidates, distances bit for bit; the scratch
+    // file is an exclusive temporary, gone afterwards, and a file a user has under the name is untouched.
     test::TempDir dir;
-    std::ofstream(dir / "sc.scratch") << "left by an interrupted run";
+    std::ofstream(dir / "sc.scratch") << "a user's file";
     {
         ScanContextFile stored(dir / "sc.scratch", config.num_rings, config.num_sectors);
         for (const auto& descriptor : descriptors) stored.Add(descriptor);
@@ -117,7 +117,8 @@ TEST(SearchScanContext, FollowsTheRebuildScheduleAndFindsTheRevisit) {
             EXPECT_EQ(from_file[k].shift, candidates[k].shift);
         }
     }
-    EXPECT_FALSE(fs::exists(dir / "sc.scratch"));
+    EXPECT_EQ(test::ReadFile(dir / "sc.scratch"), "a user's file");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
     const auto pairs = ScanContextPairs(candidates);
     ASSERT_EQ(pairs.size(), candidates.size());
     EXPECT_LT(pairs.back().pair.first, pairs.back().pair.second);

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <sstream>
 
 #include "core/error.hpp"
 #include "runfolder/run_files.hpp"
@@ -25,18 +24,11 @@ Closure DetectedPair() {
     return c;
 }
 
-std::string ReadText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 TEST(ClosureDetail, HoldsTheMatchesOnlyAndReadsThemBackExactly) {
     test::TempDir dir;
     const Closure written = DetectedPair();
     WriteClosureDetail(dir / "0000.json", written, false);
-    const std::string text = ReadText(dir / "0000.json");
+    const std::string text = test::ReadFile(dir / "0000.json");
     EXPECT_EQ(text.find("keypoints"), std::string::npos) << "the keypoints are database.bin's";
     EXPECT_LT(text.size(), 1000u);
 
