@@ -1,16 +1,15 @@
 #include "evaluation/ground_truth_closures.hpp"
 
 #include "core/error.hpp"
+#include "evaluation/voxel_set.hpp"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
-#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <iomanip>
-#include <iterator>
 #include <istream>
 #include <ostream>
 #include <sstream>
@@ -19,120 +18,6 @@ namespace revisit {
 namespace {
 
 constexpr std::size_t kNoSegment = std::numeric_limits<std::size_t>::max();
-
-/// 21 bits per axis around an offset: +-1048576 voxels, +-524 km at 0.5 m.
-std::uint64_t VoxelKey(const Eigen::Vector3d& point, double voxel_size) {
-    constexpr std::int64_t kOffset = 1 << 20;
-    constexpr std::uint64_t kMask = (1ULL << 21) - 1;
-    const auto axis = [&](double value) {
-        return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / voxel_size)) + kOffset) & kMask;
-    };
-    return (axis(point.x()) << 42) | (axis(point.y()) << 21) | axis(point.z());
-}
-
-/// SplitMix64 finalizer: a well-mixed hash of the key, so "keep 1 in N" does not follow a spatial pattern.
-std::uint64_t Mix(std::uint64_t x) {
-    x ^= x >> 30;
-    x *= 0xBF58476D1CE4E5B9ULL;
-    x ^= x >> 27;
-    x *= 0x94D049BB133111EBULL;
-    return x ^ (x >> 31);
-}
-
-/// LEB128 varint of `value` appended to `out`.
-void AppendVarint(std::vector<std::uint8_t>& out, std::uint64_t value) {
-    while (value >= 0x80) {
-        out.push_back(static_cast<std::uint8_t>(value) | 0x80);
-        value >>= 7;
-    }
-    out.push_back(static_cast<std::uint8_t>(value));
-}
-
-/// Reads a packed set's keys in order.
-class PackedReader {
-  public:
-    explicit PackedReader(const PackedVoxels& set) : next_(set.bytes.data()), end_(set.bytes.data() + set.bytes.size()) {}
-    bool Next(std::uint64_t& key) {
-        if (next_ == end_) return false;
-        std::uint64_t gap = 0;
-        for (int shift = 0; next_ != end_; shift += 7) {
-            const std::uint8_t byte = *next_++;
-            gap |= static_cast<std::uint64_t>(byte & 0x7F) << shift;
-            if (!(byte & 0x80)) break;
-        }
-        key_ += gap;
-        key = key_;
-        return true;
-    }
-
-  private:
-    const std::uint8_t* next_;
-    const std::uint8_t* end_;
-    std::uint64_t key_ = 0;
-};
-
-PackedVoxels Pack(const std::vector<std::uint64_t>& sorted_keys) {
-    PackedVoxels set;
-    set.size = sorted_keys.size();
-    std::uint64_t last = 0;
-    for (const std::uint64_t key : sorted_keys) {
-        AppendVarint(set.bytes, key - last);
-        last = key;
-    }
-    set.bytes.shrink_to_fit();
-    return set;
-}
-
-std::vector<std::uint64_t> Unpack(const PackedVoxels& set) {
-    std::vector<std::uint64_t> keys;
-    keys.reserve(set.size);
-    PackedReader reader(set);
-    for (std::uint64_t key = 0; reader.Next(key);) keys.push_back(key);
-    return keys;
-}
-
-/// Adds the voxels of one scan to a segment's set.
-void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
-               const std::vector<Eigen::Vector3f>& points_in_sensor, const GtClosureConfig& config) {
-    std::vector<std::uint64_t> scan_voxels;
-    scan_voxels.reserve(points_in_sensor.size() / std::max<std::size_t>(1, config.voxel_subsample) + 1);
-    for (const Eigen::Vector3f& p : points_in_sensor) {
-        const std::uint64_t key = VoxelKey(T_world_sensor * p.cast<double>(), config.voxel_size);
-        if (config.voxel_subsample > 1 && Mix(key) % config.voxel_subsample != 0) continue;
-        // Neighbours along a ring mostly share a voxel: dropping repeats here leaves the sort a fraction
-        // of the points (it was the evaluation's largest cost after reading the scans).
-        if (scan_voxels.empty() || scan_voxels.back() != key) scan_voxels.push_back(key);
-    }
-    std::sort(scan_voxels.begin(), scan_voxels.end());
-    scan_voxels.erase(std::unique(scan_voxels.begin(), scan_voxels.end()), scan_voxels.end());
-    if (voxels.size == 0) {
-        voxels = Pack(scan_voxels);
-        return;
-    }
-    const std::vector<std::uint64_t> held = Unpack(voxels);
-    std::vector<std::uint64_t> merged;
-    merged.reserve(held.size() + scan_voxels.size());
-    std::set_union(held.begin(), held.end(), scan_voxels.begin(), scan_voxels.end(), std::back_inserter(merged));
-    voxels = Pack(merged);
-}
-
-/// Eq. (5.1): |A n B| / min(|A|, |B|); 0 when either set is empty.
-double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) {
-    if (a.size == 0 || b.size == 0) return 0.0;
-    std::size_t common = 0;
-    PackedReader ra(a), rb(b);
-    std::uint64_t ka = 0, kb = 0;
-    bool more = ra.Next(ka) && rb.Next(kb);
-    while (more) {
-        if (ka < kb) more = ra.Next(ka);
-        else if (kb < ka) more = rb.Next(kb);
-        else {
-            ++common;
-            more = ra.Next(ka) && rb.Next(kb);
-        }
-    }
-    return static_cast<double>(common) / static_cast<double>(std::min(a.size, b.size));
-}
 
 void CheckConfig(const GtClosureConfig& config) {
     if (!(config.segment_length > 0.0)) throw ConfigError("ground truth: segment_length must be positive");
@@ -237,7 +122,8 @@ bool GroundTruthBuilder::NeedsScan(std::size_t index) const {
 
 void GroundTruthBuilder::AddScan(std::size_t index, const std::vector<Eigen::Vector3f>& points_in_sensor) {
     if (!NeedsScan(index)) return;
-    AddVoxels(voxels_[segment_of_scan_[index]], T_world_sensor_[index], points_in_sensor, config_);
+    AddVoxels(voxels_[segment_of_scan_[index]], T_world_sensor_[index], points_in_sensor, config_.voxel_size,
+              config_.voxel_subsample);
 }
 
 std::size_t GroundTruthBuilder::HeldBytes() const {

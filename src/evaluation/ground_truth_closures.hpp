@@ -5,6 +5,7 @@
 /// from the data give walks and 2D lasers their own (settings/auto_settings.cpp).
 #include "core/trajectory.hpp"
 #include "evaluation/scan_pair.hpp"
+#include "evaluation/voxel_set.hpp"
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -60,13 +61,6 @@ std::vector<GtSegment> CutSegments(const Poses& T_world_sensor, double segment_l
 /// voxelized in parallel (TBB), each by one task.
 GtClosures ComputeGroundTruthClosures(const Poses& T_world_sensor, const ScanPointsFn& scan_points,
                                       const GtClosureConfig& config);
-
-/// A segment's voxel set: its sorted keys stored as varint gaps (neighbouring keys differ by a few voxels
-/// along z or step to the next column: 1-3 bytes a key instead of 8).
-struct PackedVoxels {
-    std::vector<std::uint8_t> bytes;
-    std::size_t size = 0;  ///< keys
-};
 
 /// The same computation for scans that arrive one by one (a reader that streams, no random access):
 /// the candidates come from the poses at construction, so only scans of segments that take part in a

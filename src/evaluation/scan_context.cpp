@@ -1,6 +1,7 @@
 #include "evaluation/scan_context.hpp"
 
 #include "core/error.hpp"
+#include "evaluation/azimuth_sector.hpp"
 #include "evaluation/ring_key_index.hpp"
 #include "evaluation/scan_context_file.hpp"
 
@@ -13,12 +14,6 @@
 
 namespace revisit {
 namespace {
-
-/// The 1-based bin of value / max in count bins, clamped to [1, count] (SCManager::makeScancontext).
-int BinOf(float value, float max, int count) {
-    const int bin = static_cast<int>(std::ceil(value / max * static_cast<float>(count)));
-    return std::max(1, std::min(count, bin));
-}
 
 /// Column c of `descriptor` lands at (c + shift) mod cols (SCManager's circshift).
 float ShiftedColumnEntry(const Eigen::MatrixXf& bins, int row, int column, int shift) {
@@ -81,14 +76,15 @@ ScanContextDescriptor MakeScanContext(const std::vector<Eigen::Vector3f>& points
     // Single precision throughout, as SCManager (float points, float xy2theta).
     const float max_radius = static_cast<float>(config.max_radius);
     const float sensor_height = static_cast<float>(config.sensor_height);
-    constexpr float kDegPerRad = static_cast<float>(180.0 / M_PI);
-    for (const Eigen::Vector3f& p : points_in_sensor) {
+    std::vector<int> sectors;  // ExactSector's bins, mostly without atan2
+    const SectorOfAzimuth sector_of(config.num_sectors);
+    sector_of(points_in_sensor, sectors);
+    for (std::size_t k = 0; k < points_in_sensor.size(); ++k) {
+        const Eigen::Vector3f& p = points_in_sensor[k];
         const float range = std::sqrt(p.x() * p.x() + p.y() * p.y());
         if (range > max_radius) continue;
-        float azimuth_deg = std::atan2(p.y(), p.x()) * kDegPerRad;
-        if (azimuth_deg < 0.0f) azimuth_deg += 360.0f;
-        const int ring = BinOf(range, max_radius, config.num_rings) - 1;
-        const int sector = BinOf(azimuth_deg, 360.0f, config.num_sectors) - 1;
+        const int ring = ScanContextBin(range, max_radius, config.num_rings) - 1;
+        const int sector = sectors[k];
         bins(ring, sector) = std::max(bins(ring, sector), p.z() + sensor_height);
     }
     return DescriptorOfBins((bins.array() == kNoPoint).select(0.0f, bins));

@@ -1,0 +1,99 @@
+#include "evaluation/voxel_set.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <random>
+#include <set>
+#include <vector>
+
+namespace revisit {
+namespace {
+
+/// The voxel keys written out plainly, one per point: floor(coordinate / size) per axis, 21 bits
+/// each around an offset; with subsample > 1 only keys whose SplitMix64 hash is 0 modulo it.
+std::set<std::uint64_t> ReferenceKeys(const std::vector<std::pair<Eigen::Isometry3d, std::vector<Eigen::Vector3f>>>& scans,
+                                      double voxel_size, std::size_t subsample) {
+    std::set<std::uint64_t> keys;
+    for (const auto& [pose, points] : scans) {
+        for (const Eigen::Vector3f& p : points) {
+            const Eigen::Vector3d w = pose * p.cast<double>();
+            std::uint64_t key = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                const auto index = static_cast<std::int64_t>(std::floor(w[axis] / voxel_size)) + (1 << 20);
+                key = (key << 21) | (static_cast<std::uint64_t>(index) & ((1ULL << 21) - 1));
+            }
+            std::uint64_t h = key;
+            h ^= h >> 30;
+            h *= 0xBF58476D1CE4E5B9ULL;
+            h ^= h >> 27;
+            h *= 0x94D049BB133111EBULL;
+            h ^= h >> 31;
+            if (subsample > 1 && h % subsample != 0) continue;
+            keys.insert(key);
+        }
+    }
+    return keys;
+}
+
+/// A scan around `centre`: a lidar-like mix of random points, points on voxel and block faces
+/// (exact multiples of the size, both signs) and their float neighbours.
+std::vector<Eigen::Vector3f> Cloud(std::mt19937& rng, float extent, double voxel_size) {
+    std::uniform_real_distribution<float> uniform(-extent, extent);
+    std::uniform_int_distribution<int> cells(-40, 40);
+    std::vector<Eigen::Vector3f> points;
+    for (int k = 0; k < 20000; ++k) points.emplace_back(uniform(rng), uniform(rng), uniform(rng) / 8);
+    for (int k = 0; k < 5000; ++k) {
+        Eigen::Vector3f p(static_cast<float>(cells(rng) * voxel_size), static_cast<float>(cells(rng) * voxel_size),
+                          static_cast<float>(cells(rng) * voxel_size));
+        const int step = k % 3 - 1;  // below, on, above
+        for (int axis = 0; axis < 3; ++axis)
+            if (step != 0) p[axis] = std::nextafter(p[axis], step * 1e9f);
+        points.push_back(p);
+    }
+    points.emplace_back(-0.0f, 0.0f, -0.0f);
+    return points;
+}
+
+TEST(PackedVoxels, SameVoxelsAndOverlapsAsOneKeyPerVoxel) {
+    std::mt19937 rng(3);
+    // A power of two (multiplied by its reciprocal) and sizes that are not (divided); near the origin and
+    // beyond +-524 km at 0.5 m, where the 21-bit axes wrap.
+    for (const double voxel_size : {0.5, 0.3, 1.0, 0.1}) {
+        for (const Eigen::Vector3d& origin : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-12.3, 40.0, -1.0),
+                                             Eigen::Vector3d(524287.0 * voxel_size, -524288.0 * voxel_size, 3.0)}) {
+            for (const std::size_t subsample : {std::size_t{1}, std::size_t{3}}) {
+                std::vector<std::pair<Eigen::Isometry3d, std::vector<Eigen::Vector3f>>> a, b;
+                for (int scan = 0; scan < 3; ++scan) {
+                    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+                    pose.translation() = origin + Eigen::Vector3d(scan * 1.7, -scan * 0.9, 0.0);
+                    pose.linear() = Eigen::AngleAxisd(0.3 * scan, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+                    a.emplace_back(pose, Cloud(rng, 30.0f, voxel_size));
+                    pose.translation() += Eigen::Vector3d(5.0, 2.0, 0.0);
+                    b.emplace_back(pose, Cloud(rng, 30.0f, voxel_size));
+                }
+                PackedVoxels packed_a, packed_b;
+                for (const auto& [pose, points] : a) AddVoxels(packed_a, pose, points, voxel_size, subsample);
+                for (const auto& [pose, points] : b) AddVoxels(packed_b, pose, points, voxel_size, subsample);
+                const auto keys_a = ReferenceKeys(a, voxel_size, subsample), keys_b = ReferenceKeys(b, voxel_size, subsample);
+                ASSERT_EQ(packed_a.size, keys_a.size());
+                ASSERT_EQ(packed_b.size, keys_b.size());
+                std::vector<std::uint64_t> common;
+                std::set_intersection(keys_a.begin(), keys_a.end(), keys_b.begin(), keys_b.end(), std::back_inserter(common));
+                ASSERT_GT(common.size(), 0u);
+                const double expected = static_cast<double>(common.size()) / static_cast<double>(std::min(keys_a.size(), keys_b.size()));
+                EXPECT_EQ(OverlapCoefficient(packed_a, packed_b), expected) << voxel_size << " m, subsample " << subsample;
+                EXPECT_EQ(OverlapCoefficient(packed_b, packed_a), expected);
+                EXPECT_EQ(OverlapCoefficient(packed_a, packed_a), 1.0);
+            }
+        }
+    }
+    EXPECT_EQ(OverlapCoefficient(PackedVoxels{}, PackedVoxels{}), 0.0);
+}
+
+}  // namespace
+}  // namespace revisit
