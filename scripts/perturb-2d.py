@@ -45,6 +45,10 @@ def main():
         sys.exit("--every-nth-scan must be >= 1")
     if os.path.lexists(args.out):
         sys.exit(f"{args.out}: exists; give a new folder")
+    for name in names:  # checked before anything is written
+        size = os.path.getsize(os.path.join(scans_dir, name))
+        if size % 16 != 0:
+            sys.exit(f"{os.path.join(scans_dir, name)}: {size} bytes, not whole points of 4 float32 (x, y, z, intensity)")
 
     os.makedirs(os.path.join(args.out, "velodyne"))
     rng = np.random.default_rng(args.seed)
