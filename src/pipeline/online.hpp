@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "closures/detector.hpp"
 #include "closures/local_map.hpp"
@@ -55,6 +57,11 @@ class ClosurePipeline {
     const std::vector<ClosureRecord>& closures() const { return closures_; }
     /// Every skipped, voted-for or compared (query, earlier map) pair of the density detector.
     const std::vector<MapComparison>& comparisons() const { return comparisons_; }
+    /// The closure records and comparisons handed over after Finish, leaving them empty here: a
+    /// long run holds tens of thousands of records (each with both images' keypoints), and a copy
+    /// alive beside them raised the chain's peak.
+    std::vector<ClosureRecord> TakeClosures() { return std::exchange(closures_, {}); }
+    std::vector<MapComparison> TakeComparisons() { return std::exchange(comparisons_, {}); }
     const ClosureDetector& detector() const { return detector_; }
     /// Every scan pose re-anchored to its optimized map origin (METHOD.md section 6).
     Poses CorrectTrajectory(const Poses& T_world_sensor, const std::vector<int>& map_of_scan) const;

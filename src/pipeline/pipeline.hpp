@@ -32,7 +32,8 @@ struct RunOptions {
 };
 
 /// Runs everything and writes the run folder. Progress and the summary go to `log`. Ctrl-C stops
-/// reading; what was computed is written and run.json says "complete": false.
+/// reading; what was computed is written and run.json says "complete": false. The state's closures
+/// within one session carry no keypoints: they are their maps' in database.bin.
 RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log);
 
 /// Throws ConfigError for --to < --from and DatasetError for --from past the end (when the dataset's
