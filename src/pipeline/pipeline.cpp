@@ -323,11 +323,10 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     state.maps = pipeline.maps();
     state.closures = pipeline.TakeClosures();
     // Each record carries both images' keypoints: thousands of copies of the same maps' keypoints on a
-    // long run. Within one session they are database.bin's, and the closure files and the report take
-    // them from there (the elevation ablation's are never written): dropped before the global map,
-    // the chain's peak of memory.
+    // long run, which the run folder keeps once (KeypointsInDatabase; the elevation ablation's are
+    // never written): dropped before the global map, the chain's peak of memory.
     for (auto& record : state.closures) {
-        if (record.closure.query_session != record.closure.ref_session) continue;
+        if (!KeypointsInDatabase(record.closure)) continue;
         std::vector<Eigen::Vector2f>().swap(record.closure.query_keypoints);
         std::vector<Eigen::Vector2f>().swap(record.closure.ref_keypoints);
     }

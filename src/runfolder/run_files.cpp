@@ -116,7 +116,7 @@ void WriteClosures(const RunFolder& run, const RunState& state) {
         // The density detector's keypoints within the run are its maps' in database.bin (a pair across
         // sessions keeps its own). The elevation ablation matched images of its own, which no page draws
         // (the pages show density images): its matches get no file (95% of the closure files before).
-        if (r.method != "elevation") WriteClosureDetail(ClosureDetailFile(run, i), c, c.query_session != c.ref_session);
+        if (r.method != "elevation") WriteClosureDetail(ClosureDetailFile(run, i), c, !KeypointsInDatabase(c));
     }
     WriteLines(run.closures_csv(), header, rows);
 }

@@ -14,6 +14,10 @@ void WriteRunState(const RunFolder& run, const RunState& state);
 /// evaluation and the exports skip them (on a 100,000-scan run of older files: ~350 MB in memory).
 RunState ReadRunState(const RunFolder& run, bool closure_details = true);
 
+/// A pair within one session: both maps' keypoints are in that run's database.bin, so neither its
+/// closure file nor a run's state keeps them (the report draws them from the database).
+inline bool KeypointsInDatabase(const Closure& closure) { return closure.query_session == closure.ref_session; }
+
 /// The closure's matches, and its keypoints when `with_keypoints` (the density detector's are the maps' in
 /// database.bin: the report draws them from there). Reading checks every match against the file's
 /// keypoints when it has them, else against the maps' keypoint counts (local_maps.csv).
