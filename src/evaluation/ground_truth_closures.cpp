@@ -126,6 +126,10 @@ void GroundTruthBuilder::AddScan(std::size_t index, const std::vector<Eigen::Vec
               config_.voxel_subsample);
 }
 
+void GroundTruthBuilder::AddSegmentVoxels(std::size_t segment, PackedVoxels voxels) {
+    if (segment < needed_.size() && needed_[segment]) voxels_[segment] = std::move(voxels);
+}
+
 std::size_t GroundTruthBuilder::HeldBytes() const {
     std::size_t bytes = 0;
     for (const auto& set : voxels_) bytes += set.bytes.capacity();

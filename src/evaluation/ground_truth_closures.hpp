@@ -73,6 +73,9 @@ class GroundTruthBuilder {
     bool NeedsScan(std::size_t index) const;
     /// Adds a scan's points (sensor frame). Safe to call concurrently for scans of different segments.
     void AddScan(std::size_t index, const std::vector<Eigen::Vector3f>& points_in_sensor);
+    /// Segment `segment`'s whole voxel set, made beforehand (SegmentVoxelFile): instead of AddScan for
+    /// its scans. Dropped when no candidate pair needs the segment.
+    void AddSegmentVoxels(std::size_t segment, PackedVoxels voxels);
     /// For a caller that adds scans in order: every scan below `next_scan` has been added (or skipped).
     /// Computes the overlap of each candidate pair whose later segment is complete and frees every set
     /// no later pair needs, so a long sequence holds only the sets still waiting for a revisit. The

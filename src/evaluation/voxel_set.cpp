@@ -131,8 +131,8 @@ std::vector<Block> Unpack(const PackedVoxels& set) {
 
 }  // namespace
 
-void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
-               const std::vector<Eigen::Vector3f>& points_in_sensor, double voxel_size, std::size_t subsample) {
+PackedVoxels ScanVoxels(const Eigen::Isometry3d& T_world_sensor, const std::vector<Eigen::Vector3f>& points_in_sensor,
+                        double voxel_size, std::size_t subsample) {
     // Each block once, with the union of its voxels: a hash map and a sort of the distinct blocks
     // only (sorting every point's key was the evaluation's largest cost after reading the scans).
     tsl::robin_map<std::uint64_t, std::uint64_t, BlockHash> masks;
@@ -155,10 +155,20 @@ void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
     scan_blocks.reserve(masks.size());
     for (const auto& [block, mask] : masks) scan_blocks.push_back({block, mask});
     std::sort(scan_blocks.begin(), scan_blocks.end(), [](const Block& a, const Block& b) { return a.key < b.key; });
-    // The scan's blocks and the held ones, each block once with the union of its masks.
+    return Pack(scan_blocks);
+}
+
+void MergeVoxels(PackedVoxels& voxels, const PackedVoxels& more) {
+    if (more.size == 0) return;
+    if (voxels.size == 0) {
+        voxels = more;
+        return;
+    }
+    // Both block lists are sorted: one merge, each block once with the union of its masks.
     std::vector<Block> merged = Unpack(voxels);
     const std::size_t held = merged.size();
-    merged.insert(merged.end(), scan_blocks.begin(), scan_blocks.end());
+    const std::vector<Block> added = Unpack(more);
+    merged.insert(merged.end(), added.begin(), added.end());
     std::inplace_merge(merged.begin(), merged.begin() + static_cast<std::ptrdiff_t>(held), merged.end(),
                        [](const Block& a, const Block& b) { return a.key < b.key; });
     std::size_t out = 0;
@@ -168,6 +178,11 @@ void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
     }
     merged.resize(out);
     voxels = Pack(merged);
+}
+
+void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
+               const std::vector<Eigen::Vector3f>& points_in_sensor, double voxel_size, std::size_t subsample) {
+    MergeVoxels(voxels, ScanVoxels(T_world_sensor, points_in_sensor, voxel_size, subsample));
 }
 
 double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) {

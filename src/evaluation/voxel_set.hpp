@@ -16,8 +16,13 @@ struct PackedVoxels {
     std::size_t size = 0;  ///< voxels
 };
 
-/// Adds the voxels (of `voxel_size`) of the points of one scan, moved by T_world_sensor; with
-/// `subsample` > 1 only the voxels whose hash is 0 modulo it (the same voxels in every set).
+/// The voxels (of `voxel_size`) of the points of one scan, moved by T_world_sensor; with `subsample`
+/// > 1 only the voxels whose hash is 0 modulo it (the same voxels in every set).
+PackedVoxels ScanVoxels(const Eigen::Isometry3d& T_world_sensor, const std::vector<Eigen::Vector3f>& points_in_sensor,
+                        double voxel_size, std::size_t subsample);
+/// `voxels` becomes the union of both sets (the same set whatever the order of the merges).
+void MergeVoxels(PackedVoxels& voxels, const PackedVoxels& more);
+/// MergeVoxels(voxels, ScanVoxels(...)).
 void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
                const std::vector<Eigen::Vector3f>& points_in_sensor, double voxel_size, std::size_t subsample);
 

@@ -189,6 +189,17 @@ Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T) {
     return CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), "(pose in memory)", 0);
 }
 
+Eigen::Isometry3d AsStoredTumPose(const Eigen::Isometry3d& T) {
+    std::ostringstream text;
+    text << std::setprecision(9) << std::fixed;
+    const Eigen::Quaterniond q(T.linear());
+    const Eigen::Vector3d t = T.translation();
+    text << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w();
+    std::vector<double> v;
+    ParseNumbers(text.str(), v);
+    return CleanPose(Eigen::Quaterniond(v[6], v[3], v[4], v[5]), Eigen::Vector3d(v[0], v[1], v[2]), "(pose in memory)", 0);
+}
+
 double AsStoredTime(double t) {
     std::ostringstream text;
     text << std::setprecision(9) << std::fixed << t;

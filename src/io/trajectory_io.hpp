@@ -31,6 +31,8 @@ void WriteTimes(const std::filesystem::path& file, const std::vector<double>& ti
 /// (9 decimals): what a dataset written to disk holds, for readers that make their data in memory.
 Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T);
 double AsStoredTime(double t);
+/// A pose exactly as WriteTumPoses stores it and ReadTumPoses reads it back (a run folder's reference).
+Eigen::Isometry3d AsStoredTumPose(const Eigen::Isometry3d& T);
 
 /// How the data lines of a numeric text file look; blank lines and '#' comments are always skipped.
 struct NumberLines {

@@ -29,11 +29,47 @@ struct DatasetPass {
     std::unique_ptr<ScanContextFile> scan_context;  ///< one per scan of the run; null when not asked for
 };
 
+bool SameSegments(const std::vector<GtSegment>& a, const std::vector<GtSegment>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const GtSegment& x, const GtSegment& y) {
+        return x.first_scan == y.first_scan && x.last_scan == y.last_scan && x.start_travel == y.start_travel;
+    });
+}
+
+/// The pass from what the chain made of every scan (EvaluationPass); nullopt when its segments are not
+/// the reference's (the caller then reads the data).
+std::optional<DatasetPass> PassFromChain(EvaluationPass& chain, const Poses& reference, const PipelineConfig& config,
+                                         const std::optional<GtClosures>& cached, std::ostream& log) {
+    DatasetPass pass;
+    if (cached) {
+        pass.ground_truth = *cached;
+    } else {
+        GroundTruthBuilder builder(reference, config.ground_truth);
+        const SegmentVoxelFile& stored = chain.segment_voxels();
+        const std::vector<GtSegment>& segments = builder.segments();
+        if (!SameSegments(segments, stored.segments())) {
+            log << "note: the chain's ground-truth segments differ from the reference's: reading the data again\n";
+            return std::nullopt;
+        }
+        // In order, as a pass over the scans: each set is loaded when its segment is complete and freed
+        // after its last pair (Settle).
+        for (std::size_t s = 0; s < segments.size(); ++s) {
+            if (builder.NeedsScan(segments[s].first_scan)) builder.AddSegmentVoxels(s, stored.Load(s));
+            builder.Settle(segments[s].last_scan + 1);
+        }
+        pass.ground_truth = builder.Finish();
+    }
+    if (config.output.scan_context) pass.scan_context = chain.TakeScanContext();
+    return pass;
+}
+
 /// `reference` holds a pose per evaluated scan, `scans` each one's position in the run (empty: every
 /// scan of the run, `run_scans` of them, is evaluated).
 DatasetPass ReadDatasetPass(const Poses& reference, const std::vector<std::size_t>& scans, std::size_t run_scans,
                             const RunOptions& options, const PipelineConfig& config, const std::optional<GtClosures>& cached,
-                            const fs::path& scratch_file, std::ostream& log) {
+                            const fs::path& scratch_file, EvaluationPass* chain, std::ostream& log) {
+    if (chain && scans.empty() && reference.size() == run_scans && chain->Covers(run_scans)) {
+        if (auto from_chain = PassFromChain(*chain, reference, config, cached, log)) return std::move(*from_chain);
+    }
     DatasetPass pass;
     const bool need_scan_context = config.output.scan_context;
     if (need_scan_context) {
@@ -233,7 +269,7 @@ void WriteMetrics(const RunFolder& run, const RunEvaluation& e, const json& veri
 /// part of a run its reference covers (CoveredRun), empty when it is the run itself.
 void EvaluateClosures(const RunFolder& run, const RunState& state, const std::vector<std::size_t>& scans, std::size_t run_scans,
                       const RunOptions& options, const PipelineConfig& config, const json& extra, RunEvaluation& e,
-                      std::ostream& log) {
+                      EvaluationPass* chain, std::ostream& log) {
     std::string salt = state.dataset + "#" + std::to_string(options.from) + "#" + std::to_string(state.reference.size());
     for (const std::size_t scan : scans) salt += "," + std::to_string(scan);
     const std::string key = GroundTruthCacheKey(state.reference, config.ground_truth, salt);
@@ -241,7 +277,7 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
     const auto cached = ReadCache(cache_file, key);
     // ScanContext's descriptors wait in an exclusive temporary of the run folder until the search (removed after).
     const DatasetPass pass = ReadDatasetPass(state.reference, scans, run_scans, options, config, cached,
-                                             run.root() / "scan_context.scratch", log);
+                                             run.root() / "scan_context.scratch", chain, log);
     if (!cached) {
         WriteFileAtomically(cache_file, [&](std::ostream& out) { WriteGroundTruthClosures(out, pass.ground_truth, key); });
     }
@@ -324,14 +360,14 @@ RunEvaluation EvaluatePartialReference(const RunFolder& run, const RunState& sta
         << state.maps.size() << " local maps it covers whole; " << e.left_out_closures
         << " closure candidates with a map outside them are left out\n";
     const json extra = {{"reference", ReferenceJson(e, state.odometry.size(), state.maps.size())}};
-    EvaluateClosures(run, covered.state, covered.scans, state.odometry.size(), options, config, extra, e, log);
+    EvaluateClosures(run, covered.state, covered.scans, state.odometry.size(), options, config, extra, e, nullptr, log);
     return e;
 }
 
 }  // namespace
 
 std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
-                                         const PipelineConfig& config, std::ostream& log) {
+                                         const PipelineConfig& config, std::ostream& log, EvaluationPass* chain_pass) {
     if (state.has_partial_reference() && state.reference_scans.size() >= 2)
         return EvaluatePartialReference(run, state, options, config, log);
     if (!state.has_reference() || state.odometry.size() < 2) return std::nullopt;
@@ -340,7 +376,7 @@ std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& s
     e.evaluated_maps = state.maps.size();
     e.odometry = EvaluateTrajectory(state.odometry, state.reference);
     e.corrected = EvaluateTrajectory(state.corrected, state.reference);
-    EvaluateClosures(run, state, {}, state.odometry.size(), options, config, json(), e, log);
+    EvaluateClosures(run, state, {}, state.odometry.size(), options, config, json(), e, chain_pass, log);
     return e;
 }
 

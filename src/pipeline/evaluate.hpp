@@ -57,10 +57,10 @@ struct RunEvaluation {
 
 /// Everything above for a run with reference poses for every scan; when some scans have none, the
 /// trajectory metrics on the others and the closure metrics on the maps it covers whole (nullopt
-/// without any reference): re-reads the dataset once
-/// (only the scans the ground truth and ScanContext need), writes metrics.json, pr_curve_<method>.csv
-/// and comparison.md into the run folder.
+/// without any reference): re-reads the dataset once (only the scans the ground truth and ScanContext
+/// need) unless `chain_pass` (RunPipeline's) holds every scan, writes metrics.json,
+/// pr_curve_<method>.csv and comparison.md into the run folder.
 std::optional<RunEvaluation> EvaluateRun(const RunFolder& run, const RunState& state, const RunOptions& options,
-                                         const PipelineConfig& config, std::ostream& log);
+                                         const PipelineConfig& config, std::ostream& log, EvaluationPass* chain_pass = nullptr);
 
 }  // namespace revisit

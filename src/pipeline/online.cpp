@@ -14,6 +14,7 @@
 #include "pipeline/refinement_gate.hpp"
 #include "pipeline/scan_trail.hpp"
 #include "runfolder/map_points_file.hpp"
+#include "runfolder/run_files.hpp"
 
 namespace revisit {
 namespace {
@@ -171,9 +172,18 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
             record_elevation.closure = std::move(closure);
             record_elevation.reason = "ablation (not used for correction)";
             closures_.push_back(record_elevation);
-            update.closures.push_back(record_elevation);
+            update.closures.push_back(std::move(record_elevation));
         }
         Time("detector.elevation_ablation", MillisecondsSince(start));
+    }
+    // The update carries both images' keypoints; the records kept for the whole run do not when the
+    // detector's map records hold them (one session): a long run's tens of thousands of records would
+    // each keep a copy of two maps' keypoints, the chain's growth per scan.
+    for (std::size_t k = first_new; k < closures_.size(); ++k) {
+        Closure& closure = closures_[k].closure;
+        if (!KeypointsInDatabase(closure)) continue;
+        std::vector<Eigen::Vector2f>().swap(closure.query_keypoints);
+        std::vector<Eigen::Vector2f>().swap(closure.ref_keypoints);
     }
     if (accepted_since_optimization_ >= config_.graph_noise.optimize_every_closures) Optimize(false);
     update.closed_map = maps_.back();

@@ -54,12 +54,13 @@ class ClosurePipeline {
     /// Map origins after the latest optimization (index = map id).
     const Poses& CorrectedMapPoses() const { return corrected_nodes_; }
     const std::vector<MapRecordSummary>& maps() const { return maps_; }
+    /// Every closure record so far. A pair within one session carries no keypoints here (the update that
+    /// reported it did): they are its maps' own, detector().maps()[id].keypoints.
     const std::vector<ClosureRecord>& closures() const { return closures_; }
     /// Every skipped, voted-for or compared (query, earlier map) pair of the density detector.
     const std::vector<MapComparison>& comparisons() const { return comparisons_; }
     /// The closure records and comparisons handed over after Finish, leaving them empty here: a
-    /// long run holds tens of thousands of records (each with both images' keypoints), and a copy
-    /// alive beside them raised the chain's peak.
+    /// long run holds tens of thousands of records, and a copy alive beside them raised the chain's peak.
     std::vector<ClosureRecord> TakeClosures() { return std::exchange(closures_, {}); }
     std::vector<MapComparison> TakeComparisons() { return std::exchange(comparisons_, {}); }
     const ClosureDetector& detector() const { return detector_; }

@@ -54,6 +54,12 @@ std::size_t PeakRssKb() {
 namespace {
 
 /// A scan with its pose, on its way from the odometry to the closure pipeline.
+/// A scan on its way through the stages: the odometry's share and the evaluation's (EvaluationPass).
+struct StagedScan {
+    OdometryStages::Item item;
+    EvaluationPass::ScanPart evaluation;
+};
+
 struct PosedScan {
     std::size_t position = 0;  ///< among the scans processed
     std::vector<Eigen::Vector3f> points;  ///< in the sensor frame (deskewed by the odometry)
@@ -128,7 +134,8 @@ RunOptions ReadRunOptions(const RunFolder& run) {
     }
 }
 
-RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log) {
+RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log,
+                     std::unique_ptr<EvaluationPass>* evaluation_pass) {
     const auto run_start = Clock::now();
     // Before anything is opened, even with --force: a run folder in the dataset would become part of it.
     if (!options.out.empty()) RefuseOutputInOrOverInput(options.dataset, options.out);
@@ -136,7 +143,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     reader_options.allow_truncated = options.allow_truncated;
     // Open every input before creating the run folder: bad input fails without leaving anything behind.
     // Read ahead on a thread of its own (two scans, same order): reading overlaps the processing.
-    const std::unique_ptr<Reader> reader = std::make_unique<PrefetchReader>(OpenDataset(options.dataset, reader_options), 2);
+    std::unique_ptr<Reader> reader = std::make_unique<PrefetchReader>(OpenDataset(options.dataset, reader_options), 2);
     const PoseFileSource pose_file(options.poses == PoseSource::kFile ? options.poses_file : fs::path(), "--poses",
                                    reader_options.pose_pairing);
     const PoseFileSource ground_truth(options.gt_file, "--gt", reader_options.pose_pairing);
@@ -160,6 +167,9 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     pipeline.on_map_closed = [&run](const LocalMap& map, const MapRecord& record) {
         if (!record.image_png.empty()) WriteBytes(run.map_density(map.id), record.image_png);
     };
+    // The evaluation's share of each scan, made as the chain reads it, when the caller evaluates next.
+    std::unique_ptr<EvaluationPass> pass;
+    if (evaluation_pass && expect_reference) pass = std::make_unique<EvaluationPass>(run, config);
     std::optional<OdometryStages> odometry;
     if (options.poses == PoseSource::kOdometry) odometry.emplace(config);
     // A 2D laser's beams, kept per map for the occupancy grid's ray tracing at the corrected poses.
@@ -193,29 +203,35 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     // the closure pipeline does: the results are those of a loop. Each stage's parallel loops are
     // isolated, so a thread waiting inside one never picks up another stage's work (a map's detection
     // and verification take ~100 ms). Each timer is touched by one serial stage only.
-    using Item = OdometryStages::Item;
     std::size_t accepted = 0;
     StageTimer read_timer, odometry_timer, prepare_timer;
-    const auto read = [&](tbb::flow_control& flow) -> Item {
+    const auto reference_of = [&](const Scan& scan) {
+        return ground_truth.active() ? ground_truth.At(scan.index, scan.timestamp) : scan.T_world_sensor;
+    };
+    const auto read = [&](tbb::flow_control& flow) -> StagedScan {
         const auto read_start = Clock::now();  // the wait for the read-ahead thread's scan
-        Item item;
+        StagedScan staged;
+        OdometryStages::Item& item = staged.item;
         std::optional<Scan> scan;
         while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {}
         time(read_timer, read_start);
         if (!scan) read_to_end = !InterruptRequested();
         if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {
             flow.stop();
-            return item;
+            return staged;
         }
         item.scan = std::move(*scan);
         if (odometry) odometry->Admit(item);
-        return item;
+        return staged;
     };
-    const auto prepare = [&](Item item) {
-        if (odometry) OdometryStages::Prepare(item);
-        return item;
+    const auto prepare = [&](StagedScan staged) {
+        if (odometry) OdometryStages::Prepare(staged.item);
+        if (pass) staged.evaluation = pass->Prepare(staged.item.scan, reference_of(staged.item.scan));
+        return staged;
     };
-    const auto pose = [&](Item item) -> PosedScan {
+    const auto pose = [&](StagedScan staged) -> PosedScan {
+        OdometryStages::Item& item = staged.item;
+        if (pass) pass->Add(std::move(staged.evaluation));
         PosedScan posed;
         Scan& scan = item.scan;
         posed.position = state.odometry.size();
@@ -251,7 +267,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         }
         state.timestamps.push_back(scan.timestamp);
         state.odometry.push_back(posed.T_world_sensor);
-        const auto paired = ground_truth.active() ? ground_truth.At(scan.index, scan.timestamp) : scan.T_world_sensor;
+        const auto paired = reference_of(scan);
         if (paired) {
             reference.push_back(*paired);
             reference_scans.push_back(posed.position);
@@ -269,9 +285,9 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         if (planar_scans) planar_scans->Add(static_cast<int>(pipeline.maps().size()), posed.position, posed.points);
         progress.Update(posed.position + 1, "maps " + std::to_string(pipeline.maps().size()) + "  closures " + std::to_string(accepted));
     };
-    tbb::parallel_pipeline(kScansInFlight, tbb::make_filter<void, Item>(tbb::filter_mode::serial_in_order, read) &
-                                               tbb::make_filter<Item, Item>(tbb::filter_mode::parallel, prepare) &
-                                               tbb::make_filter<Item, PosedScan>(tbb::filter_mode::serial_in_order, pose) &
+    tbb::parallel_pipeline(kScansInFlight, tbb::make_filter<void, StagedScan>(tbb::filter_mode::serial_in_order, read) &
+                                               tbb::make_filter<StagedScan, StagedScan>(tbb::filter_mode::parallel, prepare) &
+                                               tbb::make_filter<StagedScan, PosedScan>(tbb::filter_mode::serial_in_order, pose) &
                                                tbb::make_filter<PosedScan, void>(tbb::filter_mode::serial_in_order, close_maps));
     timings["read"] = read_timer;
     if (odometry_timer.count > 0) {
@@ -280,11 +296,19 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     }
     state.complete = !InterruptRequested();
     state.truncated = reader->Info().truncated;
+    // The reader goes before the closing stages: a simulated drive's world (hundreds of MB for a long
+    // route) would otherwise stay beside the global map, the chain's peak of memory.
+    const ReadStats read_stats = reader->Stats();
+    reader.reset();
+    if (pass) {
+        pass->Finish();
+        *evaluation_pass = std::move(pass);
+    }
     if (state.odometry.empty() && state.complete) {
         // Only rawlogs get here with --from past the end: their length is known once read.
         throw DatasetError(options.dataset, options.from > 0 ? "--from " + std::to_string(options.from) +
                                                                    " is past the end: the dataset has " +
-                                                                   std::to_string(reader->Stats().scans) + " scans"
+                                                                   std::to_string(read_stats.scans) + " scans"
                                                              : std::string("no scans read"));
     }
     if (planar_scans) planar_scans->Finish();
@@ -310,8 +334,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
                                                std::to_string(accepted));
     if (read_to_end) {
         // Rawlogs: their length is known once read.
-        pose_file.CheckCount(reader->Stats().scans);
-        ground_truth.CheckCount(reader->Stats().scans);
+        pose_file.CheckCount(read_stats.scans);
+        ground_truth.CheckCount(read_stats.scans);
     }
     if (reference.size() == state.odometry.size()) {
         state.reference = std::move(reference);
@@ -321,15 +345,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     }
 
     state.maps = pipeline.maps();
-    state.closures = pipeline.TakeClosures();
-    // Each record carries both images' keypoints: thousands of copies of the same maps' keypoints on a
-    // long run, which the run folder keeps once (KeypointsInDatabase; the elevation ablation's are
-    // never written): dropped before the global map, the chain's peak of memory.
-    for (auto& record : state.closures) {
-        if (!KeypointsInDatabase(record.closure)) continue;
-        std::vector<Eigen::Vector2f>().swap(record.closure.query_keypoints);
-        std::vector<Eigen::Vector2f>().swap(record.closure.ref_keypoints);
-    }
+    state.closures = pipeline.TakeClosures();  // a pair within the session without keypoints: database.bin's
     state.comparisons = pipeline.TakeComparisons();
     state.map_of_scan = MapOfScan(state.maps, state.odometry.size());
     state.corrected = state.maps.empty() ? state.odometry : pipeline.CorrectTrajectory(state.odometry, state.map_of_scan);
@@ -364,12 +380,12 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         log << "note: " << (ground_truth.active() ? options.gt_file.string() + ": " : std::string()) << unpaired.Describe()
             << (ground_truth.by_time() ? "; the reference: " + ground_truth.DescribeSpan() : std::string()) << '\n';
     }
-    if (read_to_end && options.to && *options.to >= reader->Stats().scans) {
+    if (read_to_end && options.to && *options.to >= read_stats.scans) {
         // As --from past the end is an error: the range asked for is not silently shortened.
-        log << "note: --to " << *options.to << " is past the end: the dataset has " << reader->Stats().scans
-            << " scans; the run covers scans " << options.from << " .. " << reader->Stats().scans - 1 << '\n';
+        log << "note: --to " << *options.to << " is past the end: the dataset has " << read_stats.scans
+            << " scans; the run covers scans " << options.from << " .. " << read_stats.scans - 1 << '\n';
     }
-    const std::string drops = DescribeDrops(reader->Stats());
+    const std::string drops = DescribeDrops(read_stats);
     if (!drops.empty()) log << "note: " << drops << '\n';
     if (!state.truncated.empty()) {
         log << "warning: --allow-truncated: the input is damaged, the run covers the " << state.odometry.size()

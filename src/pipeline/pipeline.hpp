@@ -2,10 +2,12 @@
 /// `revisit run`: a dataset streamed through odometry, local maps, closures, refinement and the pose
 /// graph, into a run folder; then evaluation (when ground truth exists) and the report.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <ostream>
 
 #include "config/config.hpp"
+#include "pipeline/evaluation_pass.hpp"
 #include "runfolder/run_folder.hpp"
 #include "runfolder/run_state.hpp"
 
@@ -33,8 +35,11 @@ struct RunOptions {
 
 /// Runs everything and writes the run folder. Progress and the summary go to `log`. Ctrl-C stops
 /// reading; what was computed is written and run.json says "complete": false. The state's closures
-/// within one session carry no keypoints: they are their maps' in database.bin.
-RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log);
+/// within one session carry no keypoints: they are their maps' in database.bin. With `evaluation_pass`
+/// and reference poses, the evaluation's share of each scan is made as the scans are read and handed
+/// over there (EvaluateRun takes it).
+RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, std::ostream& log,
+                     std::unique_ptr<EvaluationPass>* evaluation_pass = nullptr);
 
 /// Throws ConfigError for --to < --from and DatasetError for --from past the end (when the dataset's
 /// length is known before reading; rawlogs are checked after reading).

@@ -11,7 +11,8 @@
 namespace revisit {
 
 RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, std::ostream& log, std::ostream& out) {
-    const RunState state = RunPipeline(options, config, log);
+    std::unique_ptr<EvaluationPass> chain_pass;  // the evaluation's share of each scan, made by the chain
+    const RunState state = RunPipeline(options, config, log, &chain_pass);
     const RunFolder run(options.out);
     std::optional<RunEvaluation> evaluation;
     PostRunSeconds after_chain;
@@ -20,8 +21,9 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
         const auto start = std::chrono::steady_clock::now();
         // From the run folder as written, as `revisit eval` reads it: the poses' files hold 9 decimals,
         // so the metrics (and the ground truth's cache key) are the ones a later eval recomputes.
-        evaluation = EvaluateRun(run, ReadRunState(run, false), options, config, log);
+        evaluation = EvaluateRun(run, ReadRunState(run, false), options, config, log, chain_pass.get());
         after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        chain_pass.reset();  // its scratch files go before the report
         // Ctrl-C after the chain: the run folder is complete; the report is skipped (an earlier one stays).
         if (config.output.write_report && !InterruptRequested()) {
             try {

@@ -59,6 +59,9 @@ class SimulationReader final : public Reader {
     /// times (sim/simulate.cpp, RunSimulation).
     static SimConfig WrittenConfig(SimConfig config) {
         config.sensor.motion_distortion = false;
+        // A KITTI folder has no odometry prior, so the plan needs none: on a long route the drifting
+        // prior is a pose per scan (tens of MB at 100,000 scans) no scan would carry.
+        config.odometry.enabled = false;
         return config;
     }
 

@@ -95,5 +95,41 @@ TEST(PackedVoxels, SameVoxelsAndOverlapsAsOneKeyPerVoxel) {
     EXPECT_EQ(OverlapCoefficient(PackedVoxels{}, PackedVoxels{}), 0.0);
 }
 
+TEST(PackedVoxels, MergingScanSetsInAnyOrderGivesTheAccumulatedSet) {
+    // What the chain's pass relies on: each scan's set made on its own (any thread), merged later in
+    // the run's order, is byte for byte the set AddVoxels accumulates scan after scan.
+    std::mt19937 rng(11);
+    std::vector<std::pair<Eigen::Isometry3d, std::vector<Eigen::Vector3f>>> scans;
+    for (int scan = 0; scan < 4; ++scan) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = Eigen::Vector3d(scan * 2.3, scan * -0.7, 0.1 * scan);
+        pose.linear() = Eigen::AngleAxisd(0.2 * scan, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+        scans.emplace_back(pose, Cloud(rng, 25.0f, 0.5));
+    }
+    for (const std::size_t subsample : {std::size_t{1}, std::size_t{4}}) {
+        PackedVoxels accumulated, merged, reversed;
+        std::vector<PackedVoxels> singles;
+        for (const auto& [pose, points] : scans) {
+            AddVoxels(accumulated, pose, points, 0.5, subsample);
+            singles.push_back(ScanVoxels(pose, points, 0.5, subsample));
+        }
+        for (const auto& single : singles) MergeVoxels(merged, single);
+        for (auto it = singles.rbegin(); it != singles.rend(); ++it) MergeVoxels(reversed, *it);
+        EXPECT_EQ(merged.bytes, accumulated.bytes);
+        EXPECT_EQ(merged.size, accumulated.size);
+        EXPECT_EQ(reversed.bytes, accumulated.bytes);
+        EXPECT_EQ(reversed.size, accumulated.size);
+        // Each scan's set is part of the union, and the union is larger than any one.
+        for (const auto& single : singles) {
+            EXPECT_EQ(OverlapCoefficient(single, accumulated), 1.0);
+            EXPECT_LT(single.size, accumulated.size);
+        }
+    }
+    PackedVoxels empty;
+    MergeVoxels(empty, PackedVoxels{});
+    EXPECT_EQ(empty.size, 0u);
+    EXPECT_TRUE(empty.bytes.empty());
+}
+
 }  // namespace
 }  // namespace revisit

@@ -45,6 +45,26 @@ TEST(TrajectoryIo, TumRoundTripKeepsTimestamps) {
     EXPECT_NEAR(back.timestamps[7], t.timestamps[7], 1e-9);
 }
 
+TEST(TrajectoryIo, AsStoredPosesAreBitForBitWhatTheFilesReadBack) {
+    // The evaluation's pass in the chain makes its voxel sets under AsStoredTumPose and the evaluation
+    // reads the reference back from a TUM file: the two must agree in every bit, not within a tolerance.
+    test::TempDir dir;
+    Trajectory t = MakeTrajectory();
+    t.timestamps.push_back(102.0);
+    t.poses.push_back(PoseFromXYZRPY(-123456.123456789123, 0.5e-10, 7.0, 3.1, -1.5, -3.14159));
+    WriteTumPoses(dir / "p.tum", t);
+    WriteKittiPoses(dir / "p.txt", t.poses);
+    const Poses tum = ReadTumPoses(dir / "p.tum").poses, kitti = ReadKittiPoses(dir / "p.txt").poses;
+    ASSERT_EQ(tum.size(), t.size());
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        EXPECT_TRUE(AsStoredTumPose(t.poses[i]).matrix() == tum[i].matrix()) << i;
+        EXPECT_TRUE(AsStoredKittiPose(t.poses[i]).matrix() == kitti[i].matrix()) << i;
+        moved += !(AsStoredTumPose(t.poses[i]).matrix() == t.poses[i].matrix());
+    }
+    EXPECT_GT(moved, 0u);  // 9 decimals do change most poses: the round trip is not the identity
+}
+
 TEST(TrajectoryIo, ReadPosesDetectsTheFormat) {
     test::TempDir dir;
     const auto t = MakeTrajectory();

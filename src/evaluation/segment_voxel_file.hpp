@@ -1,0 +1,60 @@
+#pragma once
+/// The ground truth's segment voxel sets (ground_truth_closures.hpp), made while the chain reads the
+/// scans: each scan's voxels under its reference pose join the segment CutSegments would put it in,
+/// and each finished segment's set goes to a scratch file. The evaluation then reads the sets back
+/// instead of reading (or, for `sim:`, ray-casting) every scan a second time, and holds only the sets
+/// still waiting for a revisit, as when it reads the scans.
+#include "core/atomic_file.hpp"
+#include "evaluation/ground_truth_closures.hpp"
+#include "evaluation/voxel_set.hpp"
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+namespace revisit {
+
+class SegmentVoxelFile {
+  public:
+    /// Creates an exclusive temporary beside `file` (TemporaryPath: a fresh name, no link followed);
+    /// the destructor removes it. Segments of `segment_length` [m] of travel (GtClosureConfig).
+    SegmentVoxelFile(const std::filesystem::path& file, double segment_length);
+    ~SegmentVoxelFile();
+    SegmentVoxelFile(const SegmentVoxelFile&) = delete;
+    SegmentVoxelFile& operator=(const SegmentVoxelFile&) = delete;
+
+    /// The next scan, in order: its reference pose as the run folder stores it (AsStoredTumPose) and its
+    /// voxels under that pose (ScanVoxels). Throws on a write error, naming the file.
+    void Add(const Eigen::Isometry3d& T_world_sensor, const PackedVoxels& scan_voxels);
+    /// Writes the last segment; Add may not follow.
+    void Finish();
+
+    std::size_t num_scans() const { return num_scans_; }
+    /// The segments written, as CutSegments cuts the same poses.
+    const std::vector<GtSegment>& segments() const { return segments_; }
+    /// Segment `s`'s voxel set, exactly as accumulated. Safe to call from several threads.
+    PackedVoxels Load(std::size_t s) const;
+
+  private:
+    void WriteOpenSegment();
+
+    struct Stored {
+        std::size_t offset = 0;  ///< [bytes] in the file
+        std::size_t bytes = 0;
+        std::size_t voxels = 0;
+    };
+    TemporaryPath scratch_;
+    int read_fd_ = -1;
+    double segment_length_ = 0.0;
+    std::vector<GtSegment> segments_;
+    std::vector<Stored> stored_;       ///< one per written segment
+    PackedVoxels open_;                ///< the last segment's set, not written yet
+    std::optional<Eigen::Vector3d> last_position_;
+    double travel_ = 0.0;              ///< [m] as CumulativeDistance sums it
+    std::size_t num_scans_ = 0;
+    std::size_t end_ = 0;              ///< [bytes] written
+};
+
+}  // namespace revisit
