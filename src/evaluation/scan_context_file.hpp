@@ -1,10 +1,11 @@
 #pragma once
 /// The ScanContext descriptors of a whole sequence without holding them: each scan's bins and sector
-/// key go to a scratch file as they are made, only the ring keys (what the search tree needs) stay in
-/// memory, and a candidate's descriptor is read back when its distance is computed. 100,000 scans of
-/// 20 x 60 bins are ~500 MB as descriptors in memory, ~10 MB of ring keys here.
-#include "core/atomic_file.hpp"
+/// key go to a scratch file as they are made (ScratchRecords, compressed), only the ring keys (what the
+/// search tree needs) stay in memory, and a candidate's descriptor is read back when its distance is
+/// computed. 100,000 scans of 20 x 60 bins are ~500 MB as descriptors in memory, ~10 MB of ring keys
+/// here and ~2 KB per scan of disk.
 #include "evaluation/scan_context.hpp"
+#include "evaluation/scratch_records.hpp"
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -15,11 +16,9 @@ namespace revisit {
 
 class ScanContextFile {
   public:
-    /// Creates an exclusive temporary beside `file` (core/atomic_file.hpp's TemporaryPath: a fresh name,
-    /// no link followed, nothing at `file` touched) for descriptors of `rows` x `cols` bins. The
-    /// destructor removes it.
+    /// Creates an exclusive temporary beside `file` (ScratchRecords) for descriptors of `rows` x `cols`
+    /// bins. The destructor removes it.
     ScanContextFile(const std::filesystem::path& file, int rows, int cols);
-    ~ScanContextFile();
     ScanContextFile(const ScanContextFile&) = delete;
     ScanContextFile& operator=(const ScanContextFile&) = delete;
 
@@ -32,8 +31,7 @@ class ScanContextFile {
     ScanContextDescriptor Get(std::size_t scan) const;
 
   private:
-    TemporaryPath scratch_;  ///< written through its descriptor, never committed
-    int read_fd_ = -1;       ///< the same file opened for reading (TemporaryPath's is write only)
+    ScratchRecords records_;
     int rows_ = 0;
     int cols_ = 0;
     std::vector<Eigen::VectorXf> ring_keys_;

@@ -2,30 +2,18 @@
 
 #include "core/error.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-#include <string>
-
 namespace revisit {
 namespace {
 
-std::string Problem(const std::string& what) { return what + ": " + std::strerror(errno); }
+double PositiveLength(double segment_length) {
+    if (!(segment_length > 0.0)) throw ConfigError("ground truth: segment_length must be positive");
+    return segment_length;
+}
 
 }  // namespace
 
 SegmentVoxelFile::SegmentVoxelFile(const std::filesystem::path& file, double segment_length)
-    : scratch_(file), segment_length_(segment_length) {
-    if (!(segment_length > 0.0)) throw ConfigError("ground truth: segment_length must be positive");
-    read_fd_ = ::open(scratch_.path().c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-    if (read_fd_ < 0) throw DatasetError(scratch_.path(), Problem("cannot read back the scratch file of segment voxel sets"));
-}
-
-SegmentVoxelFile::~SegmentVoxelFile() {
-    if (read_fd_ >= 0) ::close(read_fd_);
-}
+    : records_(file, "segment voxel set"), segment_length_(PositiveLength(segment_length)) {}
 
 void SegmentVoxelFile::Add(const Eigen::Isometry3d& T_world_sensor, const PackedVoxels& scan_voxels) {
     // CutSegments' rule on CumulativeDistance's sums, one scan at a time.
@@ -42,35 +30,19 @@ void SegmentVoxelFile::Add(const Eigen::Isometry3d& T_world_sensor, const Packed
 }
 
 void SegmentVoxelFile::Finish() {
-    if (stored_.size() < segments_.size()) WriteOpenSegment();
+    if (voxels_.size() < segments_.size()) WriteOpenSegment();
 }
 
 void SegmentVoxelFile::WriteOpenSegment() {
-    const auto* data = reinterpret_cast<const char*>(open_.bytes.data());
-    const std::size_t bytes = open_.bytes.size();
-    for (std::size_t written = 0; written < bytes;) {
-        const ssize_t n = ::pwrite(scratch_.descriptor(), data + written, bytes - written, off_t(end_ + written));
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw DatasetError(scratch_.path(), Problem("cannot write a segment's voxel set"));
-        written += std::size_t(n);
-    }
-    stored_.push_back({end_, bytes, open_.size});
-    end_ += bytes;
+    records_.Append(open_.bytes.data(), open_.bytes.size());
+    voxels_.push_back(open_.size);
     open_ = PackedVoxels{};
 }
 
 PackedVoxels SegmentVoxelFile::Load(std::size_t s) const {
-    const Stored& stored = stored_.at(s);
     PackedVoxels set;
-    set.size = stored.voxels;
-    set.bytes.resize(stored.bytes);
-    auto* data = reinterpret_cast<char*>(set.bytes.data());
-    for (std::size_t read = 0; read < stored.bytes;) {
-        const ssize_t n = ::pread(read_fd_, data + read, stored.bytes - read, off_t(stored.offset + read));
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw DatasetError(scratch_.path(), Problem("cannot read back segment " + std::to_string(s) + "'s voxel set"));
-        read += std::size_t(n);
-    }
+    set.size = voxels_.at(s);
+    set.bytes = records_.Read(s);
     return set;
 }
 
