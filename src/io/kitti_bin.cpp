@@ -43,13 +43,22 @@ CloudData LoadKittiBin(const std::filesystem::path& file) {
     const std::size_t n = data.size() / (4 * sizeof(float));
     CloudData cloud;
     cloud.has_intensity = true;
-    cloud.points.reserve(n);
-    cloud.intensities.reserve(n);
+    // CloudData::Add's rule written into sized arrays: a 64-beam scan has ~120,000 points, and a
+    // push_back per field per point was a sixth of a pass over such scans.
+    cloud.points.resize(n);
+    cloud.intensities.resize(n);
+    std::size_t kept = 0;
     float v[4];
     for (std::size_t i = 0; i < n; ++i) {
         std::memcpy(v, data.data() + i * sizeof v, sizeof v);
-        cloud.Add(v[0], v[1], v[2], v[3], 0.f);
+        const bool finite = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+        cloud.points[kept] = Eigen::Vector3f(v[0], v[1], v[2]);
+        cloud.intensities[kept] = v[3];
+        kept += finite;
     }
+    cloud.non_finite = n - kept;
+    cloud.points.resize(kept);
+    cloud.intensities.resize(kept);
     return cloud;
 }
 
