@@ -4,21 +4,42 @@
 #include "pipeline/interrupt.hpp"
 #include "pipeline/report_builder.hpp"
 #include "pipeline/summary.hpp"
+#include "core/allocator.hpp"
 #include "runfolder/run_files.hpp"
 
 #include <chrono>
 
 namespace revisit {
+namespace {
+
+/// Keeps what PrintRunSummary and the callers read (counts, verdicts, timings, the odometry's length).
+void ReleaseForSummary(RunState& state) {
+    for (auto& record : state.closures) {
+        std::vector<FeatureMatch>().swap(record.closure.matches);
+        std::vector<std::uint8_t>().swap(record.closure.inlier_mask);
+        std::vector<Eigen::Vector2f>().swap(record.closure.query_keypoints);
+        std::vector<Eigen::Vector2f>().swap(record.closure.ref_keypoints);
+    }
+    std::vector<MapComparison>().swap(state.comparisons);
+    Poses().swap(state.corrected);
+    Poses().swap(state.reference);
+    ReleaseFreeMemory();
+}
+
+}  // namespace
 
 RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, std::ostream& log, std::ostream& out) {
     std::unique_ptr<EvaluationPass> chain_pass;  // the evaluation's share of each scan, made by the chain
-    const RunState state = RunPipeline(options, config, log, &chain_pass);
+    RunState state = RunPipeline(options, config, log, &chain_pass);
     const RunFolder run(options.out);
     std::optional<RunEvaluation> evaluation;
     PostRunSeconds after_chain;
     bool report_written = false;
     if (state.complete) {
         const auto start = std::chrono::steady_clock::now();
+        // The evaluation reads its own copy of the state: on a long run the chain's would otherwise stay
+        // beside it, the process's peak of memory.
+        ReleaseForSummary(state);
         // From the run folder as written, as `revisit eval` reads it: the poses' files hold 9 decimals,
         // so the metrics (and the ground truth's cache key) are the ones a later eval recomputes.
         evaluation = EvaluateRun(run, ReadRunState(run, false), options, config, log, chain_pass.get());
