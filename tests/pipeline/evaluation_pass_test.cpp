@@ -10,6 +10,7 @@
 
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline_run.hpp"
 #include "runfolder/run_files.hpp"
 #include "sim_dataset.hpp"
 
@@ -30,10 +31,7 @@ std::size_t ScratchFiles(const fs::path& folder) {
 
 TEST(EvaluationPass, GivesTheEvaluationOfASecondPassOverTheData) {
     test::TempDir out;
-    RunOptions options;
-    options.dataset = test::TinySimDataset();
-    options.out = out / "run";
-    options.quiet = true;
+    RunOptions options = test::QuietRunOptions(test::TinySimDataset(), out / "run");
     const PipelineConfig config;
     std::ostringstream log;
     std::unique_ptr<EvaluationPass> pass;
@@ -69,10 +67,7 @@ TEST(EvaluationPass, GivesTheEvaluationOfASecondPassOverTheData) {
 
 TEST(EvaluationPass, IsMadeOnlyForACallerThatEvaluatesNext) {
     test::TempDir out;
-    RunOptions options;
-    options.dataset = test::TinySimDataset();
-    options.out = out / "run";
-    options.quiet = true;
+    RunOptions options = test::QuietRunOptions(test::TinySimDataset(), out / "run");
     options.to = 99;
     options.poses = PoseSource::kDataset;
     PipelineConfig config;

@@ -9,6 +9,15 @@
 
 namespace revisit::test {
 
+/// Options of a quiet run of `dataset` into `out`.
+inline RunOptions QuietRunOptions(const std::filesystem::path& dataset, const std::filesystem::path& out) {
+    RunOptions options;
+    options.dataset = dataset;
+    options.out = out;
+    options.quiet = true;
+    return options;
+}
+
 inline RunState RunQuietly(const std::filesystem::path& dataset, const PipelineConfig& config) {
     TempDir out;
     RunOptions options;
