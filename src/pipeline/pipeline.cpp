@@ -53,13 +53,13 @@ std::size_t PeakRssKb() {
 
 namespace {
 
-/// A scan with its pose, on its way from the odometry to the closure pipeline.
 /// A scan on its way through the stages: the odometry's share and the evaluation's (EvaluationPass).
 struct StagedScan {
     OdometryStages::Item item;
     EvaluationPass::ScanPart evaluation;
 };
 
+/// A scan with its pose, on its way from the odometry to the closure pipeline.
 struct PosedScan {
     std::size_t position = 0;  ///< among the scans processed
     std::vector<Eigen::Vector3f> points;  ///< in the sensor frame (deskewed by the odometry)
