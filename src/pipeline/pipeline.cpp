@@ -57,6 +57,7 @@ namespace {
 struct StagedScan {
     OdometryStages::Item item;
     EvaluationPass::ScanPart evaluation;
+    double evaluation_ms = 0.0;  ///< [ms] wall time of its share, made ahead in the parallel stage
 };
 
 /// A scan with its pose, on its way from the odometry to the closure pipeline.
@@ -204,7 +205,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     // isolated, so a thread waiting inside one never picks up another stage's work (a map's detection
     // and verification take ~100 ms). Each timer is touched by one serial stage only.
     std::size_t accepted = 0;
-    StageTimer read_timer, odometry_timer, prepare_timer;
+    StageTimer read_timer, odometry_timer, prepare_timer, pass_timer;
     const auto reference_of = [&](const Scan& scan) {
         return ground_truth.active() ? ground_truth.At(scan.index, scan.timestamp) : scan.T_world_sensor;
     };
@@ -226,12 +227,21 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     };
     const auto prepare = [&](StagedScan staged) {
         if (odometry) OdometryStages::Prepare(staged.item);
-        if (pass) staged.evaluation = pass->Prepare(staged.item.scan, reference_of(staged.item.scan));
+        if (pass) {
+            const auto start = Clock::now();
+            staged.evaluation = pass->Prepare(staged.item.scan, reference_of(staged.item.scan));
+            staged.evaluation_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        }
         return staged;
     };
     const auto pose = [&](StagedScan staged) -> PosedScan {
         OdometryStages::Item& item = staged.item;
-        if (pass) pass->Add(std::move(staged.evaluation));
+        if (pass) {
+            const auto start = Clock::now();
+            pass->Add(std::move(staged.evaluation));
+            time(pass_timer, start);
+            pass_timer.total_ms += staged.evaluation_ms;
+        }
         PosedScan posed;
         Scan& scan = item.scan;
         posed.position = state.odometry.size();
@@ -294,6 +304,7 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         timings["odometry"] = odometry_timer;
         timings["odometry.prepare"] = prepare_timer;
     }
+    if (pass_timer.count > 0) timings["evaluation.pass"] = pass_timer;  // the evaluation's share, made by the chain
     state.complete = !InterruptRequested();
     state.truncated = reader->Info().truncated;
     // The reader goes before the closing stages: a simulated drive's world (hundreds of MB for a long
