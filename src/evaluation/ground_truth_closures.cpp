@@ -28,15 +28,21 @@ void CheckConfig(const GtClosureConfig& config) {
 
 }  // namespace
 
+bool SegmentCutter::Add(const Eigen::Vector3d& position) {
+    // CumulativeDistance's sums, one scan at a time.
+    if (last_position_) travel_ += (position - *last_position_).norm();
+    last_position_ = position;
+    const std::size_t scan = num_scans_++;
+    const bool starts = segments_.empty() || travel_ - segments_.back().start_travel >= segment_length_;
+    if (starts) segments_.push_back({scan, scan, travel_});
+    segments_.back().last_scan = scan;
+    return starts;
+}
+
 std::vector<GtSegment> CutSegments(const Poses& T_world_sensor, double segment_length) {
-    const std::vector<double> travel = CumulativeDistance(T_world_sensor);
-    std::vector<GtSegment> segments;
-    for (std::size_t scan = 0; scan < travel.size(); ++scan) {
-        if (segments.empty() || travel[scan] - segments.back().start_travel >= segment_length)
-            segments.push_back({scan, scan, travel[scan]});
-        segments.back().last_scan = scan;
-    }
-    return segments;
+    SegmentCutter cutter(segment_length);
+    for (const auto& T : T_world_sensor) cutter.Add(T.translation());
+    return cutter.segments();
 }
 
 GroundTruthBuilder::GroundTruthBuilder(Poses T_world_sensor, const GtClosureConfig& config)

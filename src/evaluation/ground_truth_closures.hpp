@@ -57,6 +57,23 @@ using ScanPointsFn = std::function<std::vector<Eigen::Vector3f>(std::size_t inde
 /// current segment's first scan (travel along the path). Stationary scans stay in the current segment.
 std::vector<GtSegment> CutSegments(const Poses& T_world_sensor, double segment_length);
 
+/// CutSegments one scan at a time, for a pass that sees the poses as the scans come (SegmentVoxelFile).
+class SegmentCutter {
+  public:
+    explicit SegmentCutter(double segment_length) : segment_length_(segment_length) {}
+    /// The next scan's position [m]; true when it starts a segment.
+    bool Add(const Eigen::Vector3d& position);
+    const std::vector<GtSegment>& segments() const { return segments_; }
+    std::size_t num_scans() const { return num_scans_; }
+
+  private:
+    double segment_length_;
+    std::vector<GtSegment> segments_;
+    std::optional<Eigen::Vector3d> last_position_;
+    double travel_ = 0.0;  ///< [m] as CumulativeDistance sums it
+    std::size_t num_scans_ = 0;
+};
+
 /// The ground truth of a sequence; `T_world_sensor` holds one reference pose per scan. Segments are
 /// voxelized in parallel (TBB), each by one task.
 GtClosures ComputeGroundTruthClosures(const Poses& T_world_sensor, const ScanPointsFn& scan_points,

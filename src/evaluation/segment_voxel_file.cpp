@@ -13,24 +13,16 @@ double PositiveLength(double segment_length) {
 }  // namespace
 
 SegmentVoxelFile::SegmentVoxelFile(const std::filesystem::path& file, double segment_length)
-    : records_(file, "segment voxel set"), segment_length_(PositiveLength(segment_length)) {}
+    : records_(file, "segment voxel set"), cutter_(PositiveLength(segment_length)) {}
 
 void SegmentVoxelFile::Add(const Eigen::Isometry3d& T_world_sensor, const PackedVoxels& scan_voxels) {
-    // CutSegments' rule on CumulativeDistance's sums, one scan at a time.
-    const Eigen::Vector3d position = T_world_sensor.translation();
-    if (last_position_) travel_ += (position - *last_position_).norm();
-    last_position_ = position;
-    const std::size_t scan = num_scans_++;
-    if (segments_.empty() || travel_ - segments_.back().start_travel >= segment_length_) {
-        if (!segments_.empty()) WriteOpenSegment();
-        segments_.push_back({scan, scan, travel_});
-    }
-    segments_.back().last_scan = scan;
+    // A new segment: the one before is complete.
+    if (cutter_.Add(T_world_sensor.translation()) && cutter_.segments().size() > 1) WriteOpenSegment();
     MergeVoxels(open_, scan_voxels);
 }
 
 void SegmentVoxelFile::Finish() {
-    if (voxels_.size() < segments_.size()) WriteOpenSegment();
+    if (voxels_.size() < cutter_.segments().size()) WriteOpenSegment();
 }
 
 void SegmentVoxelFile::WriteOpenSegment() {

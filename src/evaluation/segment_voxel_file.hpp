@@ -12,7 +12,6 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <filesystem>
-#include <optional>
 #include <vector>
 
 namespace revisit {
@@ -31,9 +30,9 @@ class SegmentVoxelFile {
     /// Writes the last segment; Add may not follow.
     void Finish();
 
-    std::size_t num_scans() const { return num_scans_; }
-    /// The segments written, as CutSegments cuts the same poses.
-    const std::vector<GtSegment>& segments() const { return segments_; }
+    std::size_t num_scans() const { return cutter_.num_scans(); }
+    /// The segments, as CutSegments cuts the same poses (the last one written once Finish is called).
+    const std::vector<GtSegment>& segments() const { return cutter_.segments(); }
     /// Segment `s`'s voxel set, exactly as accumulated. Safe to call from several threads.
     PackedVoxels Load(std::size_t s) const;
 
@@ -41,13 +40,9 @@ class SegmentVoxelFile {
     void WriteOpenSegment();
 
     ScratchRecords records_;           ///< one per written segment
-    double segment_length_ = 0.0;
-    std::vector<GtSegment> segments_;
+    SegmentCutter cutter_;
     std::vector<std::size_t> voxels_;  ///< per written segment: its voxel count
     PackedVoxels open_;                ///< the last segment's set, not written yet
-    std::optional<Eigen::Vector3d> last_position_;
-    double travel_ = 0.0;              ///< [m] as CumulativeDistance sums it
-    std::size_t num_scans_ = 0;
 };
 
 }  // namespace revisit

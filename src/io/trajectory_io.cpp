@@ -110,12 +110,26 @@ Trajectory ReadKittiPoses(const std::filesystem::path& file) {
     return trajectory;
 }
 
+namespace {
+
+/// A TUM line's pose fields as WriteTumPoses writes them: x y z qx qy qz qw (the stream's precision).
+void WriteTumFields(std::ostream& out, const Eigen::Isometry3d& T) {
+    const Eigen::Quaterniond q(T.linear());
+    const Eigen::Vector3d t = T.translation();
+    out << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w();
+}
+
+/// The pose of the seven numbers WriteTumFields writes.
+Eigen::Isometry3d TumFieldsPose(const double* v, const std::filesystem::path& file, std::size_t line_number) {
+    return CleanPose(Eigen::Quaterniond(v[6], v[3], v[4], v[5]), Eigen::Vector3d(v[0], v[1], v[2]), file, line_number);
+}
+
+}  // namespace
+
 Trajectory ReadTumPoses(const std::filesystem::path& file) {
     Trajectory trajectory;
     ForEachNumberLine(file, {8, "TUM pose"}, [&](const std::vector<double>& v, std::size_t line_number) {
-        const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-        AppendStampedPose(trajectory, v[0], CleanPose(q, Eigen::Vector3d(v[1], v[2], v[3]), file, line_number), file,
-                          line_number);
+        AppendStampedPose(trajectory, v[0], TumFieldsPose(v.data() + 1, file, line_number), file, line_number);
     });
     return trajectory;
 }
@@ -192,12 +206,10 @@ Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T) {
 Eigen::Isometry3d AsStoredTumPose(const Eigen::Isometry3d& T) {
     std::ostringstream text;
     text << std::setprecision(9) << std::fixed;
-    const Eigen::Quaterniond q(T.linear());
-    const Eigen::Vector3d t = T.translation();
-    text << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w();
+    WriteTumFields(text, T);
     std::vector<double> v;
     ParseNumbers(text.str(), v);
-    return CleanPose(Eigen::Quaterniond(v[6], v[3], v[4], v[5]), Eigen::Vector3d(v[0], v[1], v[2]), "(pose in memory)", 0);
+    return TumFieldsPose(v.data(), "(pose in memory)", 0);
 }
 
 double AsStoredTime(double t) {
@@ -212,11 +224,9 @@ void WriteTumPoses(const std::filesystem::path& file, const Trajectory& trajecto
     }
     WriteText(file, [&trajectory](std::ostream& out) {
         for (std::size_t i = 0; i < trajectory.size(); ++i) {
-            const auto& T = trajectory.poses[i];
-            const Eigen::Quaterniond q(T.linear());
-            const Eigen::Vector3d t = T.translation();
-            out << trajectory.timestamps[i] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
-                << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+            out << trajectory.timestamps[i] << ' ';
+            WriteTumFields(out, trajectory.poses[i]);
+            out << '\n';
         }
     });
 }

@@ -26,7 +26,6 @@ EvaluationPass::ScanPart EvaluationPass::Prepare(const Scan& scan, const std::op
 }
 
 void EvaluationPass::Add(ScanPart part) {
-    ++scans_;
     if (!every_scan_referenced_) return;
     if (!part.T_world_sensor) {
         every_scan_referenced_ = false;
@@ -41,7 +40,7 @@ void EvaluationPass::Finish() {
 }
 
 bool EvaluationPass::Covers(std::size_t run_scans) const {
-    return every_scan_referenced_ && scans_ == run_scans && segment_voxels_->num_scans() == run_scans &&
+    return every_scan_referenced_ && segment_voxels_->num_scans() == run_scans &&
            (!scan_context_ || scan_context_->size() == run_scans);
 }
 

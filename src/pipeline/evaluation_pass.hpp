@@ -50,8 +50,7 @@ class EvaluationPass {
     ScanContextConfig scan_context_config_;
     std::unique_ptr<SegmentVoxelFile> segment_voxels_;
     std::unique_ptr<ScanContextFile> scan_context_;
-    bool every_scan_referenced_ = true;
-    std::size_t scans_ = 0;
+    bool every_scan_referenced_ = true;  ///< else the pass stopped at the first scan without one
 };
 
 }  // namespace revisit
