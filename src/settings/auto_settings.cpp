@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "io/reader.hpp"
+#include "odometry/odometry_config.hpp"
 #include "settings/motion_profile.hpp"
 
 namespace revisit {
@@ -23,6 +24,11 @@ constexpr double kContradictionFactor = 3.0;
 /// a 3D scan constrains six degrees of freedom from a few surfaces, a 2D scan three from walls.
 constexpr double kMinSourcePoints3D = 1000.0;
 constexpr double kMinSourcePoints2D = 150.0;
+/// A 2D laser's ICP needs correspondences for at least this share of the points a scan registers
+/// (odometry.min_correspondences; the default 20 is a few percent of a 3D scan's points).
+constexpr double kMinCorrespondenceShare2D = 0.2;
+/// ... and never fewer than this many: twice the three unknowns of a planar pose.
+constexpr double kMinCorrespondences2D = 6.0;
 /// [deg] rings at least this far apart in elevation get point-to-plane registration (VLP-16: 2 deg).
 constexpr double kSparseRingSpacingDeg = 1.0;
 /// [deg] a constant-velocity turn prediction off by more than this (90th percentile over the motion
@@ -59,6 +65,13 @@ std::string ValueText(const SettingChoice& c) {
 }
 
 double RoundTo(double value, double step) { return std::round(value / step) * step; }
+
+/// The median points a scan keeps for registration at the voxel `voxel` (0: not profiled).
+double RegisteredPointsAt(const DataProfile& p, double voxel) {
+    for (std::size_t k = 0; k < p.voxel_candidates.size() && k < p.source_points.size(); ++k)
+        if (std::abs(p.voxel_candidates[k] - voxel) < 1e-9) return p.source_points[k];
+    return 0.0;
+}
 
 /// The map voxel: a tenth of the median range (KISS-ICP's max_range / 100 on a 10 m-median street
 /// scene: 1 m), but no coarser than what leaves a scan enough points to register.
@@ -177,6 +190,15 @@ void ChooseClosureSettings(const DataProfile& p, double v, double max_range, std
         choices.push_back({"refinement.max_correspondence_distance", 6.0 * v, {}, "six map voxels"});
         choices.push_back({"refinement.max_rms", 2.0 * v, {}, "two map voxels"});
         choices.push_back({"refinement.min_correspondences", 50.0, {}, "a 2D map has fewer points"});
+        // The ICP's floor of 20 correspondences is 40% of a sparse laser's ~50 registered points: a key
+        // frame whose front looks into a room the map has not seen then keeps the constant-velocity
+        // prediction, and the walk is lost from there (seattle with half its beams, docs/method.md).
+        // With wheel odometry such a frame keeps the wheels' motion, which is right: the floor stays.
+        const double registered = RegisteredPointsAt(p, v);
+        const double floor = std::max(std::round(kMinCorrespondenceShare2D * registered), kMinCorrespondences2D);
+        if (!p.has_odometry_prior && registered > 0.0 && floor < OdometryConfig{}.min_correspondences)
+            choices.push_back({"odometry.min_correspondences", floor, {},
+                               "a fifth of the " + Number(registered, 0) + " points registered per scan"});
         // A revisit in a building often crosses or runs along a corridor of the other map and shares
         // 0.15-0.3 of it; such pairs are verified by what both maps observed (free_space.hpp).
         choices.push_back({"proximity.min_overlap", 0.15, {}, "a 2D laser: crossing corridors, verified by their free space"});

@@ -229,6 +229,39 @@ TEST(AutoSettings, ASparse2DLaserKeepsTheSceneScaleVoxel) {
     EXPECT_DOUBLE_EQ(voxel(ChooseSettings(dense, std::nullopt)), 0.05);
 }
 
+TEST(AutoSettings, ASparse2DLaserWithoutOdometryNeedsCorrespondencesForAFifthOfItsPoints) {
+    // 62 points a scan registered at the 0.1 m voxel its scale gives (intel's first scans): the ICP's
+    // floor of 20 correspondences would be a third of them.
+    DataProfile sparse;
+    sparse.scans = 10;
+    sparse.planar = true;
+    sparse.points_per_scan = 166;
+    sparse.range_p50 = 1.41;
+    sparse.range_p95 = 7.6;
+    sparse.range_p99 = 9.0;
+    sparse.voxel_candidates = VoxelCandidates();
+    sparse.source_points = {87, 62, 45, 36, 30, 26, 20, 17, 14, 11, 9};
+    const auto floor = [](const DataProfile& profile) {
+        for (const auto& c : ChooseSettings(profile, std::nullopt))
+            if (c.key == "odometry.min_correspondences") return c.value;
+        return -1.0;  // not chosen: the default holds
+    };
+    EXPECT_DOUBLE_EQ(floor(sparse), 12.0);
+    // With wheel odometry a frame the ICP cannot register keeps the wheels' motion: the floor stays.
+    DataProfile wheeled = sparse;
+    wheeled.has_odometry_prior = true;
+    EXPECT_EQ(floor(wheeled), -1.0);
+    // A laser that keeps 200 points at its voxel: 20 is a tenth of them.
+    DataProfile dense = sparse;
+    dense.range_p50 = 2.43;
+    dense.source_points = {200, 140, 100, 80, 60, 50, 40, 30, 25, 20, 15};
+    EXPECT_EQ(floor(dense), -1.0);
+    // Never below twice a planar pose's three unknowns.
+    DataProfile sparsest = sparse;
+    sparsest.source_points = {20, 12, 9, 7, 6, 5, 4, 4, 3, 3, 3};
+    EXPECT_DOUBLE_EQ(floor(sparsest), 6.0);
+}
+
 /// Rewrites a simulated 2D rawlog stating `stated_deg` for its 180-degree beams.
 fs::path WithStatedAperture(const fs::path& source, double stated_deg, const fs::path& out) {
     auto reader = OpenDataset(source);
