@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/mix_bits.hpp"
+
 namespace revisit {
 namespace {
 
@@ -49,15 +51,6 @@ class VoxelGrid {
     bool power_of_two_ = false;
 };
 
-/// SplitMix64 finalizer: a well-mixed hash of the key, so "keep 1 in N" does not follow a spatial pattern.
-std::uint64_t Mix(std::uint64_t x) {
-    x ^= x >> 30;
-    x *= 0xBF58476D1CE4E5B9ULL;
-    x ^= x >> 27;
-    x *= 0x94D049BB133111EBULL;
-    return x ^ (x >> 31);
-}
-
 /// Bits set in x (SWAR: no library call without -mpopcnt).
 int PopCount(std::uint64_t x) {
     x = x - ((x >> 1) & 0x5555555555555555ULL);
@@ -67,7 +60,7 @@ int PopCount(std::uint64_t x) {
 }
 
 struct BlockHash {
-    std::size_t operator()(std::uint64_t key) const { return static_cast<std::size_t>(Mix(key)); }
+    std::size_t operator()(std::uint64_t key) const { return static_cast<std::size_t>(MixBits(key)); }
 };
 
 struct Block {
@@ -141,7 +134,7 @@ PackedVoxels ScanVoxels(const Eigen::Isometry3d& T_world_sensor, const std::vect
     std::uint64_t last_block = ~std::uint64_t{0}, last_mask = 0;  // neighbours along a ring mostly share a block
     for (const Eigen::Vector3f& p : points_in_sensor) {
         const VoxelAxes axes = grid.AxesOf(T_world_sensor * p.cast<double>());
-        if (subsample > 1 && Mix(axes.Key()) % subsample != 0) continue;
+        if (subsample > 1 && MixBits(axes.Key()) % subsample != 0) continue;
         const std::uint64_t block = axes.Block();
         if (block != last_block) {
             if (last_mask != 0) masks[last_block] |= last_mask;

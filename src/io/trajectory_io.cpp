@@ -100,12 +100,29 @@ void AppendStampedPose(Trajectory& trajectory, double t, const Eigen::Isometry3d
     trajectory.poses.push_back(T);
 }
 
+namespace {
+
+/// A KITTI line as WriteKittiPoses writes it: the 3 x 4 matrix [R | t], row by row (the stream's precision).
+void WriteKittiFields(std::ostream& out, const Eigen::Isometry3d& T) {
+    const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) out << (r + c == 0 ? "" : " ") << M(r, c);
+    }
+}
+
+/// The pose of the twelve numbers WriteKittiFields writes.
+Eigen::Isometry3d KittiFieldsPose(const double* v, const std::filesystem::path& file, std::size_t line_number) {
+    Eigen::Matrix3d R;
+    R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+    return CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), file, line_number);
+}
+
+}  // namespace
+
 Trajectory ReadKittiPoses(const std::filesystem::path& file) {
     Trajectory trajectory;
     ForEachNumberLine(file, {12, "KITTI pose"}, [&](const std::vector<double>& v, std::size_t line_number) {
-        Eigen::Matrix3d R;
-        R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
-        trajectory.poses.push_back(CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), file, line_number));
+        trajectory.poses.push_back(KittiFieldsPose(v.data(), file, line_number));
     });
     return trajectory;
 }
@@ -180,10 +197,7 @@ std::vector<double> ReadTimes(const std::filesystem::path& file) {
 void WriteKittiPoses(const std::filesystem::path& file, const Poses& poses) {
     WriteText(file, [&poses](std::ostream& out) {
         for (const auto& T : poses) {
-            const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
-            for (int r = 0; r < 3; ++r) {
-                for (int c = 0; c < 4; ++c) out << (r + c == 0 ? "" : " ") << M(r, c);
-            }
+            WriteKittiFields(out, T);
             out << '\n';
         }
     });
@@ -192,15 +206,10 @@ void WriteKittiPoses(const std::filesystem::path& file, const Poses& poses) {
 Eigen::Isometry3d AsStoredKittiPose(const Eigen::Isometry3d& T) {
     std::ostringstream text;
     text << std::setprecision(9) << std::fixed;
-    const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 4; ++c) text << (r + c == 0 ? "" : " ") << M(r, c);
-    }
+    WriteKittiFields(text, T);
     std::vector<double> v;
     ParseNumbers(text.str(), v);
-    Eigen::Matrix3d R;
-    R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
-    return CleanPose(R, Eigen::Vector3d(v[3], v[7], v[11]), "(pose in memory)", 0);
+    return KittiFieldsPose(v.data(), "(pose in memory)", 0);
 }
 
 Eigen::Isometry3d AsStoredTumPose(const Eigen::Isometry3d& T) {
