@@ -214,6 +214,10 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("proximity.min_overlap", &prox.min_overlap, "",
           "predicted share of the smaller map's ground cells (1/20 of a map length) from which a pair is registered", Range{0, 1});
     s.Add("proximity.max_per_map", &prox.max_per_map, "", "registrations per map and round, largest predicted overlap first", Range{0, 100000});
+    s.Add("proximity.revisit_detour", &prox.revisit_detour, "",
+          "non-consecutive maps of one session are registered only when the path between them is at least this many "
+          "times the straight line, or their scans meet (0: every overlaid pair)",
+          Range{0, 1000});
     s.Add("proximity.odometry_check_below", &prox.odometry_check_below, "",
           "with fewer consistent detector closures, first register the maps the odometry overlays; they may displace "
           "the detector's (0: never)",

@@ -65,6 +65,13 @@ struct ProximityConfig {
     /// itself lays over each other, and those closures may displace the detector's (docs/method.md: the odometry's
     /// own overlays); 0: never.
     int odometry_check_below = 3;
+    /// Two maps of one session that are not consecutive are registered only when the path between their
+    /// first scans is at least this many times the straight line between them, or when their scans meet
+    /// (within a tenth of a map's length, a map's length of travel apart): the platform came back. A
+    /// sensor that sees farther than a map is long overlays maps a few apart along a path that never
+    /// returned; registering them measures what the odometry between them already does, less precisely
+    /// (docs/method.md). 0: every pair the estimate overlays.
+    double revisit_detour = 2.0;
 };
 
 struct OutputConfig {

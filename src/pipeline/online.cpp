@@ -114,7 +114,7 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     const auto stored = SnapToMapPointGrid(Downsampled(map.points, config_.output.map_voxel), MapPointStep(config_.output.map_voxel));
     store_->Put(map.id, stored);
     if (config_.proximity.enabled) footprints_.push_back(MapFootprint(stored, FootprintCell()));
-    if (config_.proximity.enabled && ConsecutiveRevisitsChecked(config_)) trails_.push_back(MakeScanTrail(map.T_map_scan, map.travel_start));
+    if (config_.proximity.enabled) trails_.push_back(MakeScanTrail(map.T_map_scan, map.travel_start));
     free_space_.CloseMap(map);
     Time("map_store", MillisecondsSince(start));
 
@@ -198,9 +198,24 @@ double ClosurePipeline::FootprintCell() const {
 
 bool ClosurePipeline::RevisitsPredecessor(int query, const Poses& T_world_map) const {
     const auto q = std::size_t(query);
-    if (query < 1 || q >= trails_.size() || q >= T_world_map.size()) return false;
+    if (!ConsecutiveRevisitsChecked(config_) || query < 1 || q >= trails_.size() || q >= T_world_map.size()) return false;
     const double length = config_.local_map.split_distance;
     return TrailRevisits(trails_[q - 1], T_world_map[q - 1], trails_[q], T_world_map[q], kConsecutiveRevisitShare * length, length);
+}
+
+bool ClosurePipeline::PathReturns(int query, int ref, const Poses& T_world_map) const {
+    const auto q = std::size_t(query), r = std::size_t(ref);
+    const auto& maps = detector_.maps();
+    const double detour = config_.proximity.revisit_detour;
+    if (detour <= 0.0 || q >= maps.size() || r >= maps.size() || q >= T_world_map.size() || r >= T_world_map.size()) return true;
+    if (maps[q].session != maps[r].session) return true;  // another session: a revisit by definition
+    // The platform went away and came back: the path is longer than the way between the two.
+    const double travel = std::abs(maps[q].travel_start - maps[r].travel_start);
+    const double straight = (T_world_map[q].translation() - T_world_map[r].translation()).norm();
+    if (travel >= detour * straight) return true;
+    // A path that came back to a corner of the earlier map (their starts far apart): its scans meet.
+    const double length = config_.local_map.split_distance;
+    return q < trails_.size() && TrailRevisits(trails_[r], T_world_map[r], trails_[q], T_world_map[q], kConsecutiveRevisitShare * length, length);
 }
 
 void ClosurePipeline::CheckAgainstOdometryOverlays() {
@@ -246,12 +261,14 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
     confirm.vertical_search = 0.0;
     // Consecutive maps are joined by the odometry and share their boundary (and the carried-over points):
     // not a revisit. But a 2D laser's maps (no carry-over) along a corridor walked there and back hold
-    // both passes, and nothing else joins them: those pairs are registered (RevisitsPredecessor).
+    // both passes, and nothing else joins them: those pairs are registered (RevisitsPredecessor). Maps
+    // further apart are registered when the path came back between them (PathReturns).
     const Poses& estimate = from_odometry ? nodes_ : corrected_nodes_;
     const auto pairs = PredictOverlaps(footprints_, estimate, FootprintCell(), p.min_overlap, p.max_per_map,
                                        [&](int query, int ref) {
                                            if (done.count({query, ref}) > 0) return true;
-                                           return query == ref + 1 && !RevisitsPredecessor(query, estimate);
+                                           if (query == ref + 1) return !RevisitsPredecessor(query, estimate);
+                                           return !PathReturns(query, ref, estimate);
                                        });
     std::size_t verified = 0;
     const std::size_t first = closures_.size();

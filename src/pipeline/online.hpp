@@ -91,6 +91,10 @@ class ClosurePipeline {
     /// Whether map `query` returns to where its predecessor went under the pose estimate `T_world_map`:
     /// a scan of each within a tenth of a map's length of the other, a map's length apart in travel.
     bool RevisitsPredecessor(int query, const Poses& T_world_map) const;
+    /// Whether the path from map `ref` to map `query` came back under `T_world_map` (proximity.revisit_detour):
+    /// the travel between their first scans is at least that many times the straight line, or their scans
+    /// meet as RevisitsPredecessor's do. Maps of different sessions always do.
+    bool PathReturns(int query, int ref, const Poses& T_world_map) const;
     /// Why verified closure k (of the consistency check) was dropped against the odometry alone.
     std::string OdometryContradiction(const Closure& closure, std::size_t k) const;
     /// Keeps only the maximum pairwise-consistent set of verified closures in the graph (PCM).
@@ -115,7 +119,7 @@ class ClosurePipeline {
     std::vector<ClosureRecord> closures_;
     std::vector<MapComparison> comparisons_;
     std::vector<std::vector<Eigen::Vector2d>> footprints_;  ///< per map: its ground cells (MapFootprint)
-    std::vector<ScanTrail> trails_;  ///< per map (2D lasers): where its scans were (RevisitsPredecessor)
+    std::vector<ScanTrail> trails_;  ///< per map: where its scans were (RevisitsPredecessor, PathReturns)
     Poses nodes_;            ///< odometry map origins
     std::vector<double> node_travel_;  ///< [m] travel at each map origin
     std::vector<Eigen::Vector3d> node_position_integral_;  ///< the consistency check's leg means (AppendPositionIntegral)
