@@ -62,10 +62,11 @@ TEST(RealWalk, LivoxHandheldWalkWithTheDefaultsFindsTheReturnAndNoFalseClosure) 
         EXPECT_GE(run.state.maps.size(), 5u);
         EXPECT_EQ(e.truth.num_false, 0u);
         EXPECT_GE(e.truth.num_true - e.proximity_true, 1u);  // the detector finds the return itself
-        // The proximity pass registers the maps the corrected poses overlay, start and return among them:
-        // measured 12, 12 and 13 more, all true.
+        // The proximity pass registers the maps the corrected poses overlay where the path came back, start
+        // and return among them: measured 6, 6 and 8 more, all true (12, 12 and 13 when it also registered
+        // maps a few apart along the way out, which the odometry joins: APE after 0.0821 m then, 0.0825 now).
         EXPECT_EQ(e.proximity_false, 0u);
-        EXPECT_GE(e.proximity_true, 8u);
+        EXPECT_GE(e.proximity_true, 5u);
         EXPECT_EQ(e.coverage.revisit_scans, 25u);  // ../shared/DATA.md: "about 25 frames come back within 3 m"
         EXPECT_GE(e.coverage.coverage, 0.8);
         std::vector<double> translation, yaw;
