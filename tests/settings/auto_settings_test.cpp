@@ -204,9 +204,9 @@ TEST(AutoSettings, ExplicitValuesWinAndContradictedOnesAreWarnedAbout) {
     EXPECT_FALSE(off.odometry.planar);
 }
 
-TEST(AutoSettings, ASparse2DLaserKeepsTheSceneScaleVoxel) {
-    // intel.rawlog's first scans: 166 beams, 1.41 m median range, and fewer than the 150 points a
-    // 2D scan should keep at any voxel: the floor cannot bind, the scale rule (not rounded up) decides.
+/// intel.rawlog's first scans: 166 beams, 1.41 m median range, and fewer than the 150 points a 2D scan
+/// should keep at any voxel.
+DataProfile IntelsFirstScans() {
     DataProfile sparse;
     sparse.scans = 10;
     sparse.planar = true;
@@ -216,6 +216,12 @@ TEST(AutoSettings, ASparse2DLaserKeepsTheSceneScaleVoxel) {
     sparse.range_p99 = 9.0;
     sparse.voxel_candidates = VoxelCandidates();
     sparse.source_points = {87, 62, 45, 36, 30, 26, 20, 17, 14, 11, 9};
+    return sparse;
+}
+
+TEST(AutoSettings, ASparse2DLaserKeepsTheSceneScaleVoxel) {
+    // The floor of 150 points cannot bind: the scale rule (not rounded up) decides.
+    const DataProfile sparse = IntelsFirstScans();
     auto voxel = [](const std::vector<SettingChoice>& choices) {
         for (const auto& c : choices)
             if (c.key == "odometry.voxel_size") return c.value;
@@ -232,15 +238,7 @@ TEST(AutoSettings, ASparse2DLaserKeepsTheSceneScaleVoxel) {
 TEST(AutoSettings, ASparse2DLaserWithoutOdometryNeedsCorrespondencesForAFifthOfItsPoints) {
     // 62 points a scan registered at the 0.1 m voxel its scale gives (intel's first scans): the ICP's
     // floor of 20 correspondences would be a third of them.
-    DataProfile sparse;
-    sparse.scans = 10;
-    sparse.planar = true;
-    sparse.points_per_scan = 166;
-    sparse.range_p50 = 1.41;
-    sparse.range_p95 = 7.6;
-    sparse.range_p99 = 9.0;
-    sparse.voxel_candidates = VoxelCandidates();
-    sparse.source_points = {87, 62, 45, 36, 30, 26, 20, 17, 14, 11, 9};
+    const DataProfile sparse = IntelsFirstScans();
     const auto floor = [](const DataProfile& profile) {
         for (const auto& c : ChooseSettings(profile, std::nullopt))
             if (c.key == "odometry.min_correspondences") return c.value;
