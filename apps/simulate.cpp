@@ -41,12 +41,7 @@ int RunSimulate(const SimulateOptions& options) {
     config.session = options.session;
     if (options.scale_bias) config.odometry.speed_scale_bias = *options.scale_bias;
     if (options.yaw_bias_deg) config.odometry.yaw_rate_bias = *options.yaw_bias_deg * M_PI / 180.0;
-    if (!options.trajectory.empty()) {
-        // A street world built along the given route, with the preset's sensor and city densities.
-        config.world = WorldKind::kAroundTrajectory;
-        config.trajectory_file = options.trajectory;
-        config.around.city = config.city;
-    }
+    if (!options.trajectory.empty()) config = AlongTrajectory(config, options.trajectory);
     std::optional<Progress> progress;
     const auto summary = RunSimulation(config, options.out, options.force, [&](std::size_t done, std::size_t total) {
         if (!progress) progress.emplace(std::cerr, Progress::DetectMode(options.quiet), total);

@@ -151,6 +151,13 @@ SimConfig SimPreset(const std::string& name) {
     throw ConfigError("sim.preset: unknown preset '" + name + "' (known: " + known + ")");
 }
 
+SimConfig AlongTrajectory(SimConfig config, const std::filesystem::path& trajectory_file) {
+    config.world = WorldKind::kAroundTrajectory;
+    config.trajectory_file = trajectory_file;
+    config.around.city = config.city;
+    return config;
+}
+
 SimConfig WithRouteLength(SimConfig config, double length) {
     if (!(length >= 100.0 && length <= 500000.0))
         throw ConfigError("sim: route length " + std::to_string(length) + " m is outside [100, 500000] m");

@@ -1,5 +1,6 @@
 #pragma once
 /// Named simulator configurations (`revisit simulate --preset NAME`).
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ SimConfig SimPreset(const std::string& name);
 /// revisits come after long stretches; the planned revisits grow with it. Throws ConfigError for the
 /// other worlds (indoor floors, a given trajectory) and for lengths outside [100 m, 500 km].
 SimConfig WithRouteLength(SimConfig config, double length);
+
+/// A preset's sensor and city densities in a street world built along the KITTI or TUM poses of
+/// `trajectory_file` (`revisit simulate --trajectory`): the route is that trajectory.
+SimConfig AlongTrajectory(SimConfig config, const std::filesystem::path& trajectory_file);
 
 /// Every preset name, in documentation order.
 std::vector<std::string> SimPresetNames();

@@ -3,11 +3,25 @@
 /// afterwards: for tests that look only at the run's state.
 #include <filesystem>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include "config/config.hpp"
 #include "pipeline/pipeline.hpp"
+#include "settings/auto_settings.hpp"
 #include "test_data.hpp"
 
 namespace revisit::test {
+
+/// What `revisit run DATASET` configures (the defaults, then the settings from the data; explicit values
+/// win), with `overrides` as --set, and no report, ScanContext baseline or elevation ablation.
+inline PipelineConfig DefaultsFor(const std::filesystem::path& dataset, const std::vector<std::string>& overrides = {}) {
+    std::vector<std::string> sets = {"output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"};
+    sets.insert(sets.end(), overrides.begin(), overrides.end());
+    PipelineConfig config = LoadConfig({}, sets);
+    ConfigureFromData(config, dataset);
+    return config;
+}
 
 /// Options of a quiet run of `dataset` into `out`.
 inline RunOptions QuietRunOptions(const std::filesystem::path& dataset, const std::filesystem::path& out) {

@@ -8,9 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
 #include "pipeline/pipeline.hpp"
-#include "settings/auto_settings.hpp"
+#include "pipeline_run.hpp"
 #include "sim/presets.hpp"
 #include "sim/simulate.hpp"
 #include "test_data.hpp"
@@ -20,17 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 RunState RunWith(const fs::path& dataset, const fs::path& out, const std::vector<std::string>& overrides) {
-    std::vector<std::string> sets = {"output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"};
-    sets.insert(sets.end(), overrides.begin(), overrides.end());
-    PipelineConfig config = LoadConfig({}, sets);
-    ConfigureFromData(config, dataset);
-    RunOptions options;
-    options.dataset = dataset;
-    options.out = out;
-    options.quiet = true;
-    options.poses = PoseSource::kOdometry;
     std::ostringstream log;
-    return RunPipeline(options, config, log);
+    return RunPipeline(test::QuietRunOptions(dataset, out), test::DefaultsFor(dataset, overrides), log);
 }
 
 /// Accepted proximity closures, each as its map pair.
@@ -45,10 +35,7 @@ TEST(ProximityRevisit, MapsAFewApartAlongAPathThatNeverCameBackAreNotRegistered)
     const auto route = test::SharedData("kitti_gt_poses/00.txt");
     REVISIT_REQUIRE_DATA(route);
     test::TempDir dir;
-    SimConfig sim = SimPreset("campus-vlp16");
-    sim.world = WorldKind::kAroundTrajectory;
-    sim.trajectory_file = route;
-    sim.around.city = sim.city;
+    SimConfig sim = AlongTrajectory(SimPreset("campus-vlp16"), route);
     sim.max_scans = 500;  // ~70 m of KITTI 00's first street, walked once
     RunSimulation(sim, dir / "walk", true);
 

@@ -13,20 +13,12 @@
 #include "config/config.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
-#include "settings/auto_settings.hpp"
+#include "pipeline_run.hpp"
 #include "test_data.hpp"
 
 namespace revisit {
 namespace {
 namespace fs = std::filesystem;
-
-PipelineConfig DefaultsFor(const fs::path& dataset, const std::vector<std::string>& overrides = {}) {
-    std::vector<std::string> sets = {"output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"};
-    sets.insert(sets.end(), overrides.begin(), overrides.end());
-    PipelineConfig config = LoadConfig({}, sets);
-    ConfigureFromData(config, dataset);  // what `revisit run` does before it starts; explicit values win
-    return config;
-}
 
 /// `revisit run DATASET` with the defaults (and `overrides` as --set), then its evaluation.
 struct Run2D {
@@ -35,7 +27,7 @@ struct Run2D {
 };
 
 Run2D RunDefaults(const fs::path& dataset, const std::vector<std::string>& overrides = {}) {
-    PipelineConfig config = DefaultsFor(dataset, overrides);
+    PipelineConfig config = test::DefaultsFor(dataset, overrides);
     test::TempDir out;
     RunOptions options;
     options.dataset = dataset;

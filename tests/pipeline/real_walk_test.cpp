@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "settings/auto_settings.hpp"
+#include "pipeline_run.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
 #include "test_data.hpp"
@@ -23,9 +23,7 @@ struct WalkRun {
 };
 
 WalkRun RunWalk(const fs::path& dataset, PoseSource poses) {
-    PipelineConfig config =
-        LoadConfig({}, {"output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"});
-    ConfigureFromData(config, dataset);  // what `revisit run` does before it starts
+    const PipelineConfig config = test::DefaultsFor(dataset);
     test::TempDir out;
     RunOptions options;
     options.dataset = dataset;

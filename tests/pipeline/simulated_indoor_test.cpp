@@ -9,7 +9,7 @@
 #include <sstream>
 #include <utility>
 
-#include "settings/auto_settings.hpp"
+#include "pipeline_run.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/pipeline.hpp"
 #include "sim/presets.hpp"
@@ -32,10 +32,7 @@ IndoorRun RunIndoor(const std::vector<std::string>& overrides) {
     test::TempDir dir;
     const auto dataset = dir / "indoor.rawlog";
     RunSimulation(SimPreset("indoor-2d-180"), dataset, true);
-    std::vector<std::string> sets = {"output.write_report=false", "output.scan_context=false", "output.elevation_ablation=false"};
-    sets.insert(sets.end(), overrides.begin(), overrides.end());
-    PipelineConfig config = LoadConfig({}, sets);
-    ConfigureFromData(config, dataset);  // what `revisit run` does before it starts
+    const PipelineConfig config = test::DefaultsFor(dataset, overrides);
     RunOptions options;
     options.dataset = dataset;
     options.out = dir / "run";

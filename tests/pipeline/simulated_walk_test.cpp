@@ -73,10 +73,7 @@ TEST(SimulatedDrive, ARecordingThatStartsWhileMovingKeepsItsFirstMetres) {
     const auto route = test::SharedData("kitti_gt_poses/06.txt");
     REVISIT_REQUIRE_DATA(route);
     test::TempDir dir;
-    SimConfig config = SimPreset("city-64");
-    config.world = WorldKind::kAroundTrajectory;
-    config.trajectory_file = route;
-    config.around.city = config.city;
+    SimConfig config = AlongTrajectory(SimPreset("city-64"), route);
     config.max_scans = 20;
     RunSimulation(config, dir / "drive", true);
     double error[2] = {0.0, 0.0};
