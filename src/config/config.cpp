@@ -232,7 +232,10 @@ void BindEvaluationAndOutput(ConfigSchema& s, PipelineConfig& c) {
     s.Add("evaluation.max_range", &g.max_range, "m", "segments farther apart are skipped (sensor range)", Range{0.1, 10000});
     s.Add("evaluation.travel_gap_ranges", &g.travel_gap_ranges, "", "later segment >= this x max_range of travel after (2)", Range{0, 1000});
     s.Add("evaluation.min_travel", &g.min_travel, "m", "later segment >= this much travel after; 0 = travel_gap_ranges x max_range (paper: 200)", Range{0, 1e7});
-    s.Add("evaluation.tau_d", &c.predicted.max_distance, "m", "predicted scan pairs closer than this (6)", Range{0.01, 1000});
+    s.Add("evaluation.tau_d", &c.predicted.max_distance, "m",
+          "a map closure predicts its scan pairs closer than this; 0: from the data, the distance within which "
+          "the ground truth's revisit segment pairs mostly overlap (the paper's is 6)",
+          Range{0, 1000});
     s.Add("evaluation.planar", &c.predicted.planar, "", "distances in x, y only");
     auto& t = c.truth;
     s.Add("evaluation.true_translation", &t.true_translation, "m", "an accepted closure is true within this error against the reference", Range{0, 1000});

@@ -107,11 +107,22 @@ void GroundTruthBuilder::Settle(std::size_t next_scan) {
             ++end;
         }
         tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
-            pairs[k].overlap = OverlapCoefficient(voxels_[pairs[k].earlier], voxels_[pairs[k].later]);
+            pairs[k].overlap = OverlapCoefficientAbove(voxels_[pairs[k].earlier], voxels_[pairs[k].later], config_.min_overlap);
         });
         num_candidates_ += pairs.size();
-        for (const auto& pair : pairs)
-            if (pair.overlap > config_.min_overlap) closing_.push_back(pair);
+        for (const auto& pair : pairs) {
+            const bool closes = pair.overlap > config_.min_overlap;
+            if (closes) closing_.push_back(pair);
+            const double distance = (T_world_sensor_[segments_[pair.later].first_scan].translation() -
+                                     T_world_sensor_[segments_[pair.earlier].first_scan].translation()).norm();
+            const auto bin = static_cast<std::size_t>(distance / config_.segment_length);
+            if (bin >= candidates_by_distance_.size()) {
+                candidates_by_distance_.resize(bin + 1, 0);
+                closing_by_distance_.resize(bin + 1, 0);
+            }
+            ++candidates_by_distance_[bin];
+            closing_by_distance_[bin] += closes;
+        }
         // A set is done with once its last pair is settled: as the earlier segment of its last later one,
         // or as a later segment that no segment after it pairs with.
         for (const auto& pair : pairs)
@@ -149,6 +160,9 @@ GtClosures GroundTruthBuilder::Finish() {
     result.segments = segments_;
     result.num_candidate_pairs = num_candidates_;
     result.segment_pairs = closing_;
+    result.distance_bin = config_.segment_length;
+    result.candidates_by_distance = candidates_by_distance_;
+    result.closing_by_distance = closing_by_distance_;
     std::sort(result.segment_pairs.begin(), result.segment_pairs.end(), [](const GtSegmentPair& a, const GtSegmentPair& b) {
         return std::make_pair(a.earlier, a.later) < std::make_pair(b.earlier, b.later);
     });
@@ -162,6 +176,24 @@ GtClosures GroundTruthBuilder::Finish() {
     std::sort(result.scan_pairs.begin(), result.scan_pairs.end());
     result.scan_pairs.erase(std::unique(result.scan_pairs.begin(), result.scan_pairs.end()), result.scan_pairs.end());
     return result;
+}
+
+double OverlapDistance(const GtClosures& closures) {
+    // A threshold on distance predicts "closure" below it: each bin below adds its closing pairs as
+    // right and its others as wrong. The best threshold maximises the running sum (a noisy far bin
+    // cannot move it, as a first crossing of one half would).
+    long long sum = 0, best = 0;
+    std::size_t best_bins = 0;
+    const std::size_t bins = std::min(closures.candidates_by_distance.size(), closures.closing_by_distance.size());
+    for (std::size_t b = 0; b < bins; ++b) {
+        const auto closing = static_cast<long long>(closures.closing_by_distance[b]);
+        sum += 2 * closing - static_cast<long long>(closures.candidates_by_distance[b]);
+        if (sum > best) {
+            best = sum;
+            best_bins = b + 1;
+        }
+    }
+    return static_cast<double>(best_bins) * closures.distance_bin;
 }
 
 GtClosures ComputeGroundTruthClosures(const Poses& T_world_sensor, const ScanPointsFn& scan_points,
@@ -185,7 +217,7 @@ std::string GroundTruthCacheKey(const Poses& T_world_sensor, const GtClosureConf
             hash *= 0x100000001B3ULL;
         }
     };
-    const std::uint64_t version = 1;  // bump when the algorithm's output changes
+    const std::uint64_t version = 2;  // bump when the algorithm's output changes
     add_bytes(&version, sizeof(version));
     const std::uint64_t count = T_world_sensor.size();
     add_bytes(&count, sizeof(count));
@@ -200,7 +232,7 @@ std::string GroundTruthCacheKey(const Poses& T_world_sensor, const GtClosureConf
 }
 
 void WriteGroundTruthClosures(std::ostream& out, const GtClosures& closures, const std::string& cache_key) {
-    out << "revisit-gt-closures 1\nkey " << cache_key << "\ncandidates " << closures.num_candidate_pairs << '\n';
+    out << "revisit-gt-closures 2\nkey " << cache_key << "\ncandidates " << closures.num_candidate_pairs << '\n';
     out << std::setprecision(17);
     out << "segments " << closures.segments.size() << '\n';
     for (const auto& s : closures.segments) out << s.first_scan << ' ' << s.last_scan << ' ' << s.start_travel << '\n';
@@ -208,6 +240,9 @@ void WriteGroundTruthClosures(std::ostream& out, const GtClosures& closures, con
     for (const auto& p : closures.segment_pairs) out << p.earlier << ' ' << p.later << ' ' << p.overlap << '\n';
     out << "scan_pairs " << closures.scan_pairs.size() << '\n';
     for (const auto& p : closures.scan_pairs) out << p.first << ' ' << p.second << '\n';
+    out << "distances " << closures.candidates_by_distance.size() << ' ' << closures.distance_bin << '\n';
+    for (std::size_t b = 0; b < closures.candidates_by_distance.size(); ++b)
+        out << closures.candidates_by_distance[b] << ' ' << closures.closing_by_distance[b] << '\n';
     out << "end\n";
 }
 
@@ -222,7 +257,7 @@ std::optional<GtClosures> ReadGroundTruthClosures(std::istream& in, const std::s
     const std::size_t kMaxCount = bytes_left / 4;
     std::string word, key;
     int version = 0;
-    if (!(in >> word >> version) || word != "revisit-gt-closures" || version != 1) return std::nullopt;
+    if (!(in >> word >> version) || word != "revisit-gt-closures" || version != 2) return std::nullopt;
     if (!(in >> word >> key) || word != "key" || key != expected_key) return std::nullopt;
     GtClosures closures;
     std::size_t count = 0;
@@ -239,6 +274,11 @@ std::optional<GtClosures> ReadGroundTruthClosures(std::istream& in, const std::s
     closures.scan_pairs.resize(count);
     for (auto& p : closures.scan_pairs)
         if (!(in >> p.first >> p.second)) return std::nullopt;
+    if (!(in >> word >> count >> closures.distance_bin) || word != "distances" || count > kMaxCount) return std::nullopt;
+    closures.candidates_by_distance.resize(count);
+    closures.closing_by_distance.resize(count);
+    for (std::size_t b = 0; b < count; ++b)
+        if (!(in >> closures.candidates_by_distance[b] >> closures.closing_by_distance[b])) return std::nullopt;
     if (!(in >> word) || word != "end") return std::nullopt;  // a truncated file is not a cache
     return closures;
 }

@@ -48,7 +48,19 @@ struct GtClosures {
     std::vector<GtSegmentPair> segment_pairs;  ///< closures only (overlap > min_overlap), sorted
     std::vector<ScanPair> scan_pairs;          ///< every scan pair across closing segments, sorted, unique
     std::size_t num_candidate_pairs = 0;       ///< segment pairs that passed the travel and distance limits
+    /// The candidate pairs, and the closing ones among them, by the distance of their first poses in bins
+    /// of `distance_bin` [m] (the segment length): how far apart this sensor's views of a place still
+    /// overlap in this environment (OverlapDistance).
+    double distance_bin = 0.0;
+    std::vector<std::size_t> candidates_by_distance;
+    std::vector<std::size_t> closing_by_distance;
 };
+
+/// The distance below which the ground truth's candidate pairs mostly overlap: the threshold on the
+/// first poses' distance that best reproduces the overlap rule (the most closing minus non-closing
+/// pairs below it, the nearest such threshold on ties) [m]. 0 when no distance does (no candidates,
+/// or none of their distance bins closes more often than not).
+double OverlapDistance(const GtClosures& closures);
 
 /// Points of scan `index` in its sensor frame. Called concurrently from TBB workers: must be thread-safe.
 using ScanPointsFn = std::function<std::vector<Eigen::Vector3f>(std::size_t index)>;
@@ -125,6 +137,7 @@ class GroundTruthBuilder {
     std::vector<PackedVoxels> voxels_;       // per segment
     std::size_t settled_ = 0;                // segments [0, settled_) have every pair settled
     std::size_t num_candidates_ = 0;         // pairs settled
+    std::vector<std::size_t> candidates_by_distance_, closing_by_distance_;  // settled pairs per segment_length
     std::vector<GtSegmentPair> closing_;     // settled pairs with overlap > min_overlap
 };
 

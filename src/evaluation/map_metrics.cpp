@@ -1,6 +1,7 @@
 #include "evaluation/map_metrics.hpp"
 
 #include "core/error.hpp"
+#include "evaluation/scan_pair.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,18 +9,27 @@
 namespace revisit {
 namespace {
 
-bool Inside(std::size_t scan, std::size_t first, std::size_t last) { return scan >= first && scan <= last; }
-
-std::size_t CountPairsBetween(const MapClosureForEval& c, const std::vector<ScanPair>& gt_scan_pairs) {
+/// Pairs (first, second) of `sorted` with first in [first_lo, first_hi] and second in [second_lo, second_hi]:
+/// binary searches per first scan, so a closure costs its maps' length, not the ground truth's size.
+std::size_t CountInRanges(const std::vector<ScanPair>& sorted, std::size_t first_lo, std::size_t first_hi,
+                          std::size_t second_lo, std::size_t second_hi) {
+    if (first_lo > first_hi || second_lo > second_hi) return 0;
     std::size_t count = 0;
-    for (const auto& pair : gt_scan_pairs) {
-        const bool forward = Inside(pair.first, c.ref_first_scan, c.ref_last_scan) &&
-                             Inside(pair.second, c.query_first_scan, c.query_last_scan);
-        const bool backward = Inside(pair.second, c.ref_first_scan, c.ref_last_scan) &&
-                              Inside(pair.first, c.query_first_scan, c.query_last_scan);
-        if (forward || backward) ++count;
+    for (std::size_t first = first_lo; first <= first_hi; ++first) {
+        const auto begin = std::lower_bound(sorted.begin(), sorted.end(), ScanPair{first, second_lo});
+        const auto end = std::upper_bound(begin, sorted.end(), ScanPair{first, second_hi});
+        count += static_cast<std::size_t>(end - begin);
     }
     return count;
+}
+
+/// Ground-truth pairs with one scan in each map, either way round (`sorted`: SortedUniquePairs).
+std::size_t CountPairsBetween(const MapClosureForEval& c, const std::vector<ScanPair>& sorted) {
+    const std::size_t forward = CountInRanges(sorted, c.ref_first_scan, c.ref_last_scan, c.query_first_scan, c.query_last_scan);
+    const std::size_t backward = CountInRanges(sorted, c.query_first_scan, c.query_last_scan, c.ref_first_scan, c.ref_last_scan);
+    // A pair with both scans where the two maps overlap is counted both ways: once is right.
+    const std::size_t lo = std::max(c.ref_first_scan, c.query_first_scan), hi = std::min(c.ref_last_scan, c.query_last_scan);
+    return forward + backward - CountInRanges(sorted, lo, hi, lo, hi);
 }
 
 }  // namespace
@@ -35,7 +45,8 @@ std::size_t MapIndexOfScan(const std::vector<MapRange>& maps, std::size_t scan) 
 MapRecall ComputeMapRecall(const std::vector<MapRange>& maps, const std::vector<MapClosureForEval>& closures,
                            const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
     std::vector<char> revisits(maps.size(), 0), found(maps.size(), 0);
-    for (const auto& pair : gt_scan_pairs) {
+    const std::vector<ScanPair> sorted = SortedUniquePairs(gt_scan_pairs);
+    for (const auto& pair : sorted) {
         const std::size_t a = MapIndexOfScan(maps, std::min(pair.first, pair.second));
         const std::size_t b = MapIndexOfScan(maps, std::max(pair.first, pair.second));
         if (a < maps.size() && b < maps.size() && a != b) revisits[std::max(a, b)] = 1;
@@ -43,7 +54,7 @@ MapRecall ComputeMapRecall(const std::vector<MapRange>& maps, const std::vector<
     for (const auto& closure : closures) {
         if (closure.inliers < config.min_inliers) continue;
         const std::size_t query = MapIndexOfScan(maps, closure.query_first_scan);
-        if (query < maps.size() && CountPairsBetween(closure, gt_scan_pairs) > 0) found[query] = 1;
+        if (query < maps.size() && CountPairsBetween(closure, sorted) > 0) found[query] = 1;
     }
     MapRecall recall;
     for (std::size_t m = 0; m < maps.size(); ++m) {
@@ -73,12 +84,13 @@ MapMetrics EvaluateMapClosures(const std::vector<MapClosureForEval>& closures, c
                                const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
     MapMetrics metrics;
     std::vector<double> translation_errors, yaw_errors;
+    const std::vector<ScanPair> sorted = SortedUniquePairs(gt_scan_pairs);
     for (std::size_t k = 0; k < closures.size(); ++k) {
         const MapClosureForEval& c = closures[k];
         if (c.inliers < config.min_inliers) continue;
         MapClosureAssessment assessment;
         assessment.closure = k;
-        assessment.gt_scan_pairs = CountPairsBetween(c, gt_scan_pairs);
+        assessment.gt_scan_pairs = CountPairsBetween(c, sorted);
         assessment.right_map = assessment.gt_scan_pairs > 0;
         const ClosurePoseError error = ClosureErrorAgainst(T_world_sensor, c.query_first_scan, c.ref_first_scan, c.T_query_ref);
         assessment.translation_error = error.translation;

@@ -1,8 +1,11 @@
 #include "evaluation/method_comparison.hpp"
 
+#include <algorithm>
 #include <iomanip>
+#include <map>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 namespace revisit {
 namespace {
@@ -17,14 +20,64 @@ std::string OptionalFixed(const std::optional<double>& value, int digits) {
     return value ? Fixed(*value, digits) : std::string("-");
 }
 
+using ScanRange = std::pair<std::size_t, std::size_t>;  // first, last scan
+
+/// The two maps a closure joins, in either order.
+std::pair<ScanRange, ScanRange> MapPairOf(const MapClosureForEval& closure) {
+    const ScanRange ref{closure.ref_first_scan, closure.ref_last_scan};
+    const ScanRange query{closure.query_first_scan, closure.query_last_scan};
+    return ref < query ? std::make_pair(ref, query) : std::make_pair(query, ref);
+}
+
+/// Whether any two of the closures' scan ranges are either the same or disjoint (a run's maps).
+bool ScanRangesPartition(const std::vector<MapClosureForEval>& closures) {
+    std::vector<ScanRange> ranges;
+    for (const auto& c : closures) {
+        ranges.push_back({c.ref_first_scan, c.ref_last_scan});
+        ranges.push_back({c.query_first_scan, c.query_last_scan});
+    }
+    std::sort(ranges.begin(), ranges.end());
+    ranges.erase(std::unique(ranges.begin(), ranges.end()), ranges.end());
+    for (std::size_t k = 1; k < ranges.size(); ++k)
+        if (ranges[k].first <= ranges[k - 1].second) return false;
+    return true;
+}
+
 }  // namespace
 
 PrSweepResult ScoreMapClosures(const std::vector<MapClosureForEval>& closures, const Poses& T_odom_sensor,
                                const std::vector<ScanPair>& ground_truth, const PredictedClosureConfig& config,
                                int min_inliers) {
-    const std::vector<ScoredPair> predicted = ExpandMapClosures(closures, T_odom_sensor, config);
-    return SweepPrecisionRecall(predicted, ground_truth, InlierThresholds(predicted, min_inliers),
-                                Acceptance::kScoreAtLeast);
+    if (!ScanRangesPartition(closures)) {
+        std::vector<ScoredPair> predicted = ExpandMapClosures(closures, T_odom_sensor, config);
+        std::vector<double> thresholds = InlierThresholds(predicted, min_inliers);
+        return SweepPrecisionRecall(std::move(predicted), ground_truth, thresholds, Acceptance::kScoreAtLeast);
+    }
+    // A run's maps partition its scans, so two closures predict a common scan pair only when they join
+    // the same two maps: each map pair's closures are expanded and counted on their own, and the whole
+    // prediction (tens of millions of pairs on a long drive) is never held at once.
+    const std::vector<ScanPair> truth = SortedUniquePairs(ground_truth);
+    std::vector<std::size_t> order(closures.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return MapPairOf(closures[a]) < MapPairOf(closures[b]); });
+    std::map<double, std::pair<std::size_t, std::size_t>> by_score;  // distinct pairs with this best score, true ones
+    std::vector<MapClosureForEval> group;
+    for (std::size_t k = 0; k < order.size();) {
+        group.clear();
+        const auto key = MapPairOf(closures[order[k]]);
+        for (; k < order.size() && MapPairOf(closures[order[k]]) == key; ++k) group.push_back(closures[order[k]]);
+        std::vector<ScoredPair> predicted = ExpandMapClosures(group, T_odom_sensor, config);
+        KeepBestScorePerPair(predicted, Acceptance::kScoreAtLeast);
+        for (const auto& scored : predicted) {
+            auto& [count, true_count] = by_score[scored.score];
+            ++count;
+            true_count += std::binary_search(truth.begin(), truth.end(), scored.pair) ? 1 : 0;
+        }
+    }
+    ThresholdCounts counts(InlierThresholdsUpTo(by_score.empty() ? 0.0 : by_score.rbegin()->first, min_inliers),
+                           Acceptance::kScoreAtLeast);
+    for (const auto& [score, count] : by_score) counts.Add(score, count.first, count.second);
+    return counts.Result(truth.size());
 }
 
 PrSweepResult ScoreScanContext(const std::vector<ScanContextCandidate>& candidates,

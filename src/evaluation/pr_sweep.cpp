@@ -4,60 +4,51 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
-#include <unordered_set>
+#include <utility>
 
 namespace revisit {
-namespace {
 
-/// One entry per distinct pair with its best score under `acceptance`.
-std::vector<ScoredPair> BestScorePerPair(const std::vector<ScoredPair>& predicted, Acceptance acceptance) {
-    std::unordered_map<ScanPair, double, ScanPairHash> best;
-    for (const auto& scored : predicted) {
-        const ScanPair pair = MakeScanPair(scored.pair.first, scored.pair.second);
-        const auto [it, inserted] = best.emplace(pair, scored.score);
-        if (inserted) continue;
-        it->second = acceptance == Acceptance::kScoreAtLeast ? std::max(it->second, scored.score)
-                                                              : std::min(it->second, scored.score);
-    }
-    std::vector<ScoredPair> unique;
-    unique.reserve(best.size());
-    for (const auto& [pair, score] : best) unique.push_back({pair, score});
-    return unique;
+ThresholdCounts::ThresholdCounts(std::vector<double> thresholds, Acceptance acceptance)
+    : thresholds_(std::move(thresholds)), sorted_(thresholds_), acceptance_(acceptance) {
+    std::sort(sorted_.begin(), sorted_.end());
+    predicted_at_.assign(sorted_.size() + 1, 0);
+    true_at_.assign(sorted_.size() + 1, 0);
 }
 
-}  // namespace
+void ThresholdCounts::Add(double score, std::size_t count, std::size_t true_count) {
+    // The thresholds accepting a score are a run of the sorted ones: at least, [0, bound) (those up to
+    // the score); at most, [bound, T) (those from it). Counted at `bound`, summed per threshold below.
+    const auto bound = acceptance_ == Acceptance::kScoreAtLeast ? std::upper_bound(sorted_.begin(), sorted_.end(), score)
+                                                                 : std::lower_bound(sorted_.begin(), sorted_.end(), score);
+    const auto at = static_cast<std::size_t>(bound - sorted_.begin());
+    predicted_at_[at] += count;
+    true_at_[at] += true_count;
+}
 
-PrSweepResult SweepPrecisionRecall(const std::vector<ScoredPair>& predicted, const std::vector<ScanPair>& ground_truth,
-                                   const std::vector<double>& thresholds, Acceptance acceptance) {
-    std::unordered_set<ScanPair, ScanPairHash> truth;
-    for (const auto& pair : ground_truth) truth.insert(MakeScanPair(pair.first, pair.second));
-
-    // Sort the distinct predictions from most to least confident; a threshold then accepts a prefix,
-    // and a running count of true positives answers every threshold by binary search.
-    std::vector<ScoredPair> unique = BestScorePerPair(predicted, acceptance);
-    const bool high_first = acceptance == Acceptance::kScoreAtLeast;
-    std::sort(unique.begin(), unique.end(), [high_first](const ScoredPair& a, const ScoredPair& b) {
-        if (a.score != b.score) return high_first ? a.score > b.score : a.score < b.score;
-        return a.pair < b.pair;
-    });
-    std::vector<std::size_t> cumulative_tp(unique.size() + 1, 0);
-    for (std::size_t k = 0; k < unique.size(); ++k)
-        cumulative_tp[k + 1] = cumulative_tp[k] + (truth.count(unique[k].pair) ? 1 : 0);
-
+PrSweepResult ThresholdCounts::Result(std::size_t num_ground_truth) const {
+    const bool high_first = acceptance_ == Acceptance::kScoreAtLeast;
+    const std::size_t num_sorted = sorted_.size();
+    std::vector<std::size_t> accepted(num_sorted, 0), accepted_true(num_sorted, 0);
+    std::size_t running = 0, running_true = 0;
+    for (std::size_t step = 0; step < num_sorted; ++step) {
+        // At least: threshold i accepts the runs ending after it, so sum from the highest down.
+        const std::size_t i = high_first ? num_sorted - 1 - step : step;
+        running += predicted_at_[high_first ? i + 1 : i];
+        running_true += true_at_[high_first ? i + 1 : i];
+        accepted[i] = running;
+        accepted_true[i] = running_true;
+    }
     PrSweepResult result;
-    result.curve.reserve(thresholds.size());
-    for (const double threshold : thresholds) {
-        const auto end = high_first
-            ? std::partition_point(unique.begin(), unique.end(), [&](const ScoredPair& s) { return s.score >= threshold; })
-            : std::partition_point(unique.begin(), unique.end(), [&](const ScoredPair& s) { return s.score <= threshold; });
+    result.curve.reserve(thresholds_.size());
+    for (const double threshold : thresholds_) {
+        const auto i = static_cast<std::size_t>(std::lower_bound(sorted_.begin(), sorted_.end(), threshold) - sorted_.begin());
         PrPoint point;
         point.threshold = threshold;
-        point.num_predicted = static_cast<std::size_t>(end - unique.begin());
-        point.true_positives = cumulative_tp[point.num_predicted];
-        point.num_ground_truth = truth.size();
+        point.num_predicted = accepted[i];
+        point.true_positives = accepted_true[i];
+        point.num_ground_truth = num_ground_truth;
         if (point.num_predicted > 0) point.precision = double(point.true_positives) / double(point.num_predicted);
-        if (!truth.empty()) point.recall = double(point.true_positives) / double(truth.size());
+        if (num_ground_truth > 0) point.recall = double(point.true_positives) / double(num_ground_truth);
         if (point.precision + point.recall > 0.0)
             point.f1 = 2.0 * point.precision * point.recall / (point.precision + point.recall);
         if (result.curve.empty() || point.f1 > result.best.f1) result.best = point;
@@ -72,9 +63,39 @@ PrSweepResult SweepPrecisionRecall(const std::vector<ScoredPair>& predicted, con
     return result;
 }
 
+void KeepBestScorePerPair(std::vector<ScoredPair>& predicted, Acceptance acceptance) {
+    const bool high_first = acceptance == Acceptance::kScoreAtLeast;
+    for (auto& scored : predicted) scored.pair = MakeScanPair(scored.pair.first, scored.pair.second);
+    std::sort(predicted.begin(), predicted.end(), [high_first](const ScoredPair& a, const ScoredPair& b) {
+        if (a.pair != b.pair) return a.pair < b.pair;
+        return high_first ? a.score > b.score : a.score < b.score;
+    });
+    predicted.erase(std::unique(predicted.begin(), predicted.end(),
+                                [](const ScoredPair& a, const ScoredPair& b) { return a.pair == b.pair; }),
+                    predicted.end());
+}
+
+PrSweepResult SweepPrecisionRecall(std::vector<ScoredPair> predicted, const std::vector<ScanPair>& ground_truth,
+                                   const std::vector<double>& thresholds, Acceptance acceptance) {
+    // Sorted vectors, not hash containers: a node per pair was the evaluation's memory peak.
+    const std::vector<ScanPair> truth = SortedUniquePairs(ground_truth);
+    KeepBestScorePerPair(predicted, acceptance);
+    ThresholdCounts counts(thresholds, acceptance);
+    for (std::size_t k = 0, t = 0; k < predicted.size(); ++k) {  // one merge with the sorted truth
+        while (t < truth.size() && truth[t] < predicted[k].pair) ++t;
+        counts.Add(predicted[k].score, 1, t < truth.size() && truth[t] == predicted[k].pair ? 1 : 0);
+    }
+    return counts.Result(truth.size());
+}
+
 std::vector<double> InlierThresholds(const std::vector<ScoredPair>& predicted, int min_inliers) {
     double max_score = min_inliers;
     for (const auto& scored : predicted) max_score = std::max(max_score, scored.score);
+    return InlierThresholdsUpTo(max_score, min_inliers);
+}
+
+std::vector<double> InlierThresholdsUpTo(double max_score, int min_inliers) {
+    max_score = std::max<double>(max_score, min_inliers);
     std::vector<double> thresholds;
     for (int inliers = min_inliers; inliers <= static_cast<int>(std::floor(max_score)); ++inliers)
         thresholds.push_back(inliers);

@@ -10,7 +10,8 @@
 namespace revisit {
 
 struct PredictedClosureConfig {
-    double max_distance = 6.0;  ///< tau_d [m]: scan pairs closer than this after the correction are closures
+    double max_distance = 0.0;  ///< tau_d [m]: scan pairs closer than this after the correction are closures;
+                                ///< 0 in a run's config: OverlapDistance of its ground truth (the paper's is 6)
     bool planar = false;        ///< measure the distance in x, y only (2D sensors, or maps levelled in z)
 };
 

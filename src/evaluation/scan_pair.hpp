@@ -1,10 +1,10 @@
 #pragma once
 /// A scan-level loop closure: an unordered pair of scan indices, stored sorted
 /// (METHOD.md section 7: precision and recall are computed on sets of sorted scan pairs).
+#include <algorithm>
 #include <cstddef>
-#include <cstdint>
-#include <functional>
 #include <utility>
+#include <vector>
 
 namespace revisit {
 
@@ -22,12 +22,16 @@ struct ScanPair {
 /// The sorted pair of two scan indices, whatever their order.
 inline ScanPair MakeScanPair(std::size_t a, std::size_t b) { return a < b ? ScanPair{a, b} : ScanPair{b, a}; }
 
-struct ScanPairHash {
-    std::size_t operator()(const ScanPair& pair) const {
-        const std::uint64_t key = (static_cast<std::uint64_t>(pair.first) << 32) ^ static_cast<std::uint64_t>(pair.second);
-        return std::hash<std::uint64_t>{}(key * 0x9E3779B97F4A7C15ULL);
-    }
-};
+/// `pairs` sorted, without repeats, each in MakeScanPair's order (a ground truth's scan pairs already
+/// are: the sort is skipped).
+inline std::vector<ScanPair> SortedUniquePairs(const std::vector<ScanPair>& pairs) {
+    std::vector<ScanPair> sorted;
+    sorted.reserve(pairs.size());
+    for (const auto& pair : pairs) sorted.push_back(MakeScanPair(pair.first, pair.second));
+    if (!std::is_sorted(sorted.begin(), sorted.end())) std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    return sorted;
+}
 
 /// A predicted scan-level closure with the detector's score (inliers, or a descriptor distance).
 struct ScoredPair {

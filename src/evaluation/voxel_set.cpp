@@ -178,21 +178,41 @@ void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
     MergeVoxels(voxels, ScanVoxels(T_world_sensor, points_in_sensor, voxel_size, subsample));
 }
 
-double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) {
+double OverlapCoefficientAbove(const PackedVoxels& a, const PackedVoxels& b, double min_overlap) {
     if (a.size == 0 || b.size == 0) return 0.0;
-    std::size_t common = 0;
+    const std::size_t smaller = std::min(a.size, b.size);
+    const auto ratio = [smaller](std::size_t common) { return static_cast<double>(common) / static_cast<double>(smaller); };
+    // The most common voxels whose ratio is still at most min_overlap, by the same division as the
+    // result (monotone): a bound at or below it proves the pair does not close, rounding included.
+    std::size_t at_most = 0;
+    const bool can_stop = min_overlap >= 0.0 && ratio(smaller) > min_overlap;
+    if (can_stop) {
+        at_most = static_cast<std::size_t>(min_overlap * static_cast<double>(smaller));
+        while (at_most > 0 && ratio(at_most) > min_overlap) --at_most;
+        while (ratio(at_most + 1) <= min_overlap) ++at_most;
+    }
+    std::size_t common = 0, left_a = a.size, left_b = b.size;
     PackedReader ra(a), rb(b);
     Block ba{}, bb{};
     bool more = ra.Next(ba) && rb.Next(bb);
     while (more) {
-        if (ba.key < bb.key) more = ra.Next(ba);
-        else if (bb.key < ba.key) more = rb.Next(bb);
-        else {
+        if (ba.key < bb.key) {
+            left_a -= static_cast<std::size_t>(PopCount(ba.mask));
+            more = ra.Next(ba);
+        } else if (bb.key < ba.key) {
+            left_b -= static_cast<std::size_t>(PopCount(bb.mask));
+            more = rb.Next(bb);
+        } else {
             common += static_cast<std::size_t>(PopCount(ba.mask & bb.mask));
+            left_a -= static_cast<std::size_t>(PopCount(ba.mask));
+            left_b -= static_cast<std::size_t>(PopCount(bb.mask));
             more = ra.Next(ba) && rb.Next(bb);
         }
+        if (can_stop && common + std::min(left_a, left_b) <= at_most) return ratio(common);
     }
-    return static_cast<double>(common) / static_cast<double>(std::min(a.size, b.size));
+    return ratio(common);
 }
+
+double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) { return OverlapCoefficientAbove(a, b, -1.0); }
 
 }  // namespace revisit

@@ -28,5 +28,9 @@ void AddVoxels(PackedVoxels& voxels, const Eigen::Isometry3d& T_world_sensor,
 
 /// Eq. (5.1): |A n B| / min(|A|, |B|); 0 when either set is empty.
 double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b);
+/// The same when it exceeds `min_overlap`; otherwise some value at most `min_overlap`: the merge stops
+/// once the voxels left in either set cannot lift the overlap above it (most candidate pairs of a
+/// long drive do not close, and this is where the ground truth spends its time).
+double OverlapCoefficientAbove(const PackedVoxels& a, const PackedVoxels& b, double min_overlap);
 
 }  // namespace revisit

@@ -36,7 +36,8 @@ struct RunEvaluation {
     std::size_t gt_closing_segment_pairs = 0;
     std::size_t gt_scan_pairs = 0;
     std::size_t gt_pairs_within_tau = 0;  ///< of those, closer than tau_d by the reference: the recall ceiling
-    double tau_d = 0.0;                   ///< [m] evaluation.tau_d
+    double tau_d = 0.0;                   ///< [m] the prediction's pair range: evaluation.tau_d, or from the data
+    std::string tau_d_source;             ///< "given", "overlap" (the ground truth's OverlapDistance), "paper" (6 m)
     /// The share of ground-truth pairs within tau_d: the most recall a map-level method can score.
     double recall_ceiling() const { return gt_scan_pairs ? double(gt_pairs_within_tau) / double(gt_scan_pairs) : 0.0; }
     std::map<std::string, PrSweepResult> sweeps;  ///< per method

@@ -137,6 +137,10 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
         out << "  recall ceiling: " << std::setprecision(3) << evaluation->recall_ceiling() << " ("
             << evaluation->gt_pairs_within_tau << " of them lie within tau_d = " << std::defaultfloat
             << evaluation->tau_d << std::fixed << " m, the most a map closure can predict)\n";
+        if (evaluation->tau_d_source == "overlap")
+            out << "  tau_d from the data: revisit segment pairs closer than that mostly overlap by more than half\n";
+        else if (evaluation->tau_d_source == "paper")
+            out << "  tau_d is the paper's: no distance separates overlapping revisit segment pairs from the others\n";
     }
     out << '\n';
     out << "  method            precision  recall     F1   R@100%P   APE before [m]  APE after [m]\n";

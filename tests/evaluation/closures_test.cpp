@@ -117,6 +117,21 @@ TEST(EvaluateMapClosures, RightMapAndPoseError) {
     EXPECT_NEAR(metrics.yaw_error_deg.max, 2.0, 1e-9);
 }
 
+TEST(EvaluateMapClosures, CountsEachPairBetweenTheMapsOnceEitherWayRound) {
+    // Ranges that overlap (scans 5-9 in both): a pair inside the overlap is counted once; a pair given
+    // reversed, or twice, counts once; pairs with a scan outside both maps do not count.
+    MapClosureForEval c = Closure(Eigen::Isometry3d::Identity(), 30);
+    c.ref_first_scan = 0;
+    c.ref_last_scan = 9;
+    c.query_first_scan = 5;
+    c.query_last_scan = 14;
+    Poses gt(21, Eigen::Isometry3d::Identity());
+    const std::vector<ScanPair> gt_pairs = {{2, 12}, {6, 8}, {12, 3}, {3, 12}, {7, 20}, {1, 4}, {14, 5}};
+    const auto metrics = EvaluateMapClosures({c}, gt, gt_pairs, MapMetricsConfig{});
+    ASSERT_EQ(metrics.closures.size(), 1u);
+    EXPECT_EQ(metrics.closures[0].gt_scan_pairs, 4u);  // (2,12), (3,12), (6,8), (5,14); not (1,4), (7,20)
+}
+
 TEST(ComputeMapRecall, CountsMapsThatRevisitAndThoseFoundRight) {
     // Maps of 3 scans: 0-2, 3-5, 6-8, 9-11, 12-14. Map 3 truly revisits map 0, map 4 revisits map 1.
     const std::vector<MapRange> maps = {{0, 2}, {3, 5}, {6, 8}, {9, 11}, {12, 14}};

@@ -46,6 +46,11 @@ TEST(ComputeGroundTruthClosures, HandComputedOverlaps) {
     EXPECT_EQ(closures.segment_pairs[0].later, 2u);
     EXPECT_NEAR(closures.segment_pairs[0].overlap, 2.0 / 3.0, 1e-12);
     EXPECT_EQ(closures.scan_pairs, (std::vector<ScanPair>{{0, 2}}));
+    // By distance in 2 m bins: 0-2 at 0 m closes, 0-1 and 1-2 at 3 m do not.
+    EXPECT_EQ(closures.distance_bin, 2.0);
+    EXPECT_EQ(closures.candidates_by_distance, (std::vector<std::size_t>{1, 2}));
+    EXPECT_EQ(closures.closing_by_distance, (std::vector<std::size_t>{1, 0}));
+    EXPECT_EQ(OverlapDistance(closures), 2.0);
 
     auto config = fixture.config();
     config.min_overlap = 0.7;  // above 2/3: nothing closes
@@ -56,6 +61,21 @@ TEST(ComputeGroundTruthClosures, HandComputedOverlaps) {
     config = fixture.config();
     config.max_range = 2.0;  // the pairs 0-1 and 1-2 start 3 m apart
     EXPECT_EQ(ComputeGroundTruthClosures(fixture.poses, fixture.points, config).num_candidate_pairs, 1u);
+}
+
+TEST(OverlapDistance, TheDistanceRuleThatBestReproducesTheOverlapRule) {
+    GtClosures closures;
+    closures.distance_bin = 2.0;
+    closures.candidates_by_distance = {10, 10, 10, 10};
+    closures.closing_by_distance = {10, 8, 2, 3};
+    EXPECT_EQ(OverlapDistance(closures), 4.0);  // right minus wrong below: 10, 16, 10, 6
+    closures.closing_by_distance = {10, 8, 2, 9};
+    EXPECT_EQ(OverlapDistance(closures), 8.0);  // 10, 16, 10, 18: a far bin counts only when it outweighs the gap
+    closures.closing_by_distance = {10, 5, 5, 0};
+    EXPECT_EQ(OverlapDistance(closures), 2.0);  // ties keep the nearest
+    closures.closing_by_distance = {4, 5, 0, 0};
+    EXPECT_EQ(OverlapDistance(closures), 0.0);  // no distance at which most pairs overlap
+    EXPECT_EQ(OverlapDistance(GtClosures{}), 0.0);
 }
 
 TEST(CutSegments, TwoMetresOfTravelEach) {
@@ -101,6 +121,22 @@ TEST_F(SquareLoop, FindsTheRevisitAndOnlyPlausiblePairs) {
         EXPECT_FALSE(pair.first >= 60 && pair.first <= 100) << pair.first << "," << pair.second;
         EXPECT_FALSE(pair.second >= 60 && pair.second <= 100) << pair.first << "," << pair.second;
     }
+    // The candidates by distance account for every pair; the revisit's pairs close near each other
+    // and stop closing before the sensor's views part (two ranges apart).
+    std::size_t candidates = 0, closing = 0, closing_below = 0, candidates_below = 0;
+    const double overlap_distance = OverlapDistance(closures);
+    for (std::size_t b = 0; b < closures.candidates_by_distance.size(); ++b) {
+        candidates += closures.candidates_by_distance[b];
+        closing += closures.closing_by_distance[b];
+        if ((b + 1) * closures.distance_bin > overlap_distance) continue;
+        candidates_below += closures.candidates_by_distance[b];
+        closing_below += closures.closing_by_distance[b];
+    }
+    EXPECT_EQ(candidates, closures.num_candidate_pairs);
+    EXPECT_EQ(closing, closures.segment_pairs.size());
+    EXPECT_GT(overlap_distance, 2.0);
+    EXPECT_LT(overlap_distance, 2.0 * kSensorRange);
+    EXPECT_GT(2 * closing_below, candidates_below);
     for (const auto& segment_pair : closures.segment_pairs) {
         EXPECT_GT(segment_pair.overlap, 0.5);
         const auto& a = closures.segments[segment_pair.earlier];
@@ -200,6 +236,9 @@ TEST_F(SquareLoop, CacheRoundTripAndKeys) {
     EXPECT_EQ(read->segment_pairs.back().overlap, closures.segment_pairs.back().overlap);  // exact text
     EXPECT_EQ(read->segments.size(), closures.segments.size());
     EXPECT_EQ(read->num_candidate_pairs, closures.num_candidate_pairs);
+    EXPECT_EQ(read->distance_bin, closures.distance_bin);
+    EXPECT_EQ(read->candidates_by_distance, closures.candidates_by_distance);
+    EXPECT_EQ(read->closing_by_distance, closures.closing_by_distance);
 
     std::istringstream other_key(text);
     EXPECT_FALSE(ReadGroundTruthClosures(other_key, "0000000000000000").has_value());

@@ -83,6 +83,29 @@ TEST(SweepPrecisionRecall, DistancesAcceptBelowThreshold) {
     EXPECT_NEAR(result.best.f1, 2 * (2.0 / 3) * 0.5 / (2.0 / 3 + 0.5), 1e-12);
 }
 
+TEST(SweepPrecisionRecall, EachThresholdScoredAsGivenInAnyOrderTiesAccepted) {
+    // Thresholds out of order and repeated get the same point as in order; a score equal to the
+    // threshold is accepted either way (>= for inliers, <= for distances).
+    const std::vector<double> inliers = {20, 3, 15, 15, 8, 21};
+    const auto at_least = SweepPrecisionRecall(Predicted(), Truth(), inliers, Acceptance::kScoreAtLeast);
+    const std::vector<std::size_t> predicted_at_least = {1, 5, 2, 2, 4, 0}, true_at_least = {1, 3, 2, 2, 3, 0};
+    const std::vector<ScoredPair> distances = {{{1, 10}, 0.25}, {{5, 20}, 0.5}, {{2, 11}, 0.75}};
+    const std::vector<double> limits = {0.75, 0.0, 0.5, 0.25, 0.5};
+    const auto at_most = SweepPrecisionRecall(distances, Truth(), limits, Acceptance::kScoreAtMost);
+    const std::vector<std::size_t> predicted_at_most = {3, 0, 2, 1, 2}, true_at_most = {2, 0, 1, 1, 1};
+    ASSERT_EQ(at_least.curve.size(), inliers.size());
+    ASSERT_EQ(at_most.curve.size(), limits.size());
+    for (std::size_t k = 0; k < inliers.size(); ++k) {
+        EXPECT_EQ(at_least.curve[k].threshold, inliers[k]);
+        EXPECT_EQ(at_least.curve[k].num_predicted, predicted_at_least[k]) << inliers[k];
+        EXPECT_EQ(at_least.curve[k].true_positives, true_at_least[k]) << inliers[k];
+    }
+    for (std::size_t k = 0; k < limits.size(); ++k) {
+        EXPECT_EQ(at_most.curve[k].num_predicted, predicted_at_most[k]) << limits[k];
+        EXPECT_EQ(at_most.curve[k].true_positives, true_at_most[k]) << limits[k];
+    }
+}
+
 TEST(SweepPrecisionRecall, NothingPredictedGivesZeros) {
     const auto result = SweepPrecisionRecall({}, Truth(), {3.0, 4.0}, Acceptance::kScoreAtLeast);
     EXPECT_EQ(result.best.f1, 0.0);

@@ -89,6 +89,18 @@ TEST(PackedVoxels, SameVoxelsAndOverlapsAsOneKeyPerVoxel) {
                 EXPECT_EQ(OverlapCoefficient(packed_a, packed_b), expected) << voxel_size << " m, subsample " << subsample;
                 EXPECT_EQ(OverlapCoefficient(packed_b, packed_a), expected);
                 EXPECT_EQ(OverlapCoefficient(packed_a, packed_a), 1.0);
+                // Stopping early decides "above the threshold or not" as the full count does, at the
+                // boundary too, and gives the exact overlap whenever it is above.
+                for (const double threshold : {0.0, 0.1, 0.5, 0.9, expected, std::nextafter(expected, 0.0),
+                                               std::nextafter(expected, 1.0)}) {
+                    const double above = OverlapCoefficientAbove(packed_a, packed_b, threshold);
+                    if (expected > threshold) {
+                        EXPECT_EQ(above, expected) << threshold;
+                    } else {
+                        EXPECT_LE(above, threshold);
+                    }
+                    EXPECT_EQ(OverlapCoefficientAbove(packed_b, packed_a, threshold) > threshold, expected > threshold);
+                }
             }
         }
     }

@@ -3,6 +3,8 @@
 /// nothing; the settings from the data give it pairs the detector is allowed to find.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "config/config.hpp"
 #include "evaluation/ground_truth_closures.hpp"
 #include "io/trajectory_io.hpp"
@@ -44,6 +46,13 @@ TEST(GroundTruthScale, WalkGetsPairsTheDetectorMayFind) {
         EXPECT_GE(travel, config.ground_truth.min_travel);
         EXPECT_GT(pair.overlap, config.ground_truth.min_overlap);
     }
+    // The prediction's pair range from the same ground truth: a distance within the walk's range below
+    // which the revisit pairs mostly close; the car scale has no candidates to measure it on.
+    const double tau_d = OverlapDistance(at_data_scale);
+    std::printf("tau_d from the walk's ground truth: %.1f m\n", tau_d);
+    EXPECT_GT(tau_d, at_data_scale.distance_bin);
+    EXPECT_LT(tau_d, config.ground_truth.max_range);
+    EXPECT_EQ(OverlapDistance(at_car_scale), 0.0);
 }
 
 }  // namespace

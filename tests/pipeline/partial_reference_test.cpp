@@ -182,7 +182,8 @@ TEST(PartialReference, ClosureMetricsOnTheMapsItCoversWholeAgreeWithTheFullRefer
     // evaluated scans, scored against its ground truth between them, at every threshold, are the
     // partial evaluation's curve: the same pairs predicted (none with a scan outside), true positives
     // apart by at most the pairs on which the two ground truths differ.
-    const PipelineConfig config = LoadConfig({(dir / "part" / "config.yaml").string()}, {});
+    PipelineConfig config = LoadConfig({(dir / "part" / "config.yaml").string()}, {});
+    config.predicted.max_distance = p["ground_truth"]["tau_d_m"].get<double>();  // as the partial evaluation resolved it
     std::vector<MapClosureForEval> density_closures;
     for (const auto& record : full_state.closures) {
         if (record.method != "density") continue;
