@@ -96,14 +96,53 @@ std::vector<std::size_t> GroundTruthBuilder::EarlierPartners(std::size_t j) cons
     return partners;
 }
 
+void GroundTruthBuilder::LoadSetsFrom(std::function<PackedVoxels(std::size_t)> load, std::size_t budget_bytes) {
+    load_ = std::move(load);
+    budget_bytes_ = budget_bytes;
+    resident_.assign(segments_.size(), 0);
+    last_used_.assign(segments_.size(), 0);
+}
+
+std::size_t GroundTruthBuilder::MakeResident(std::size_t s, std::size_t batch) {
+    last_used_[s] = batch;
+    if (resident_[s]) return 0;
+    voxels_[s] = load_(s);
+    resident_[s] = 1;
+    held_bytes_ += voxels_[s].bytes.size();
+    return voxels_[s].bytes.size();
+}
+
+void GroundTruthBuilder::EvictToBudget() {
+    if (held_bytes_ <= budget_bytes_) return;
+    std::vector<std::pair<std::size_t, std::size_t>> by_use;  // (last batch, segment): oldest first
+    for (std::size_t s = 0; s < resident_.size(); ++s)
+        if (resident_[s]) by_use.emplace_back(last_used_[s], s);
+    std::sort(by_use.begin(), by_use.end());
+    for (const auto& [batch, s] : by_use) {
+        if (held_bytes_ <= budget_bytes_) break;
+        held_bytes_ -= voxels_[s].bytes.size();
+        voxels_[s] = PackedVoxels{};
+        resident_[s] = 0;
+    }
+}
+
 void GroundTruthBuilder::Settle(std::size_t next_scan) {
     // Complete segments in batches: their pairs' overlaps in parallel, a bounded list at a time.
     constexpr std::size_t kBatchPairs = 1 << 16;
     while (settled_ < segments_.size() && segments_[settled_].last_scan < next_scan) {
         std::vector<GtSegmentPair> pairs;
         std::size_t end = settled_;
+        const std::size_t batch = ++batches_;
+        std::size_t batch_bytes = 0;  // loaded for this batch (LoadSetsFrom)
         while (end < segments_.size() && segments_[end].last_scan < next_scan && pairs.size() < kBatchPairs) {
-            for (const std::size_t i : EarlierPartners(end)) pairs.push_back({i, end, 0.0});
+            // With stored sets a batch also ends once its sets fill the budget: one batch's sets are in memory at once.
+            if (load_ && end > settled_ && batch_bytes > budget_bytes_) break;
+            const std::vector<std::size_t> partners = EarlierPartners(end);
+            if (load_ && !partners.empty()) {
+                batch_bytes += MakeResident(end, batch);
+                for (const std::size_t i : partners) batch_bytes += MakeResident(i, batch);
+            }
+            for (const std::size_t i : partners) pairs.push_back({i, end, 0.0});
             ++end;
         }
         tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
@@ -125,11 +164,17 @@ void GroundTruthBuilder::Settle(std::size_t next_scan) {
         }
         // A set is done with once its last pair is settled: as the earlier segment of its last later one,
         // or as a later segment that no segment after it pairs with.
+        const auto drop = [this](std::size_t s) {
+            if (load_ && resident_[s]) held_bytes_ -= voxels_[s].bytes.size(), resident_[s] = 0;
+            voxels_[s] = PackedVoxels{};
+        };
         for (const auto& pair : pairs)
-            if (last_later_[pair.earlier] == pair.later) voxels_[pair.earlier] = PackedVoxels{};
+            if (last_later_[pair.earlier] == pair.later) drop(pair.earlier);
         for (std::size_t j = settled_; j < end; ++j)
-            if (last_later_[j] == kNoSegment) voxels_[j] = PackedVoxels{};
+            if (last_later_[j] == kNoSegment) drop(j);
+        if (load_) EvictToBudget();
         settled_ = end;
+        if (on_settled_) on_settled_(settled_);
     }
 }
 
@@ -141,10 +186,6 @@ void GroundTruthBuilder::AddScan(std::size_t index, const std::vector<Eigen::Vec
     if (!NeedsScan(index)) return;
     AddVoxels(voxels_[segment_of_scan_[index]], T_world_sensor_[index], points_in_sensor, config_.voxel_size,
               config_.voxel_subsample);
-}
-
-void GroundTruthBuilder::AddSegmentVoxels(std::size_t segment, PackedVoxels voxels) {
-    if (segment < needed_.size() && needed_[segment]) voxels_[segment] = std::move(voxels);
 }
 
 std::size_t GroundTruthBuilder::HeldBytes() const {

@@ -102,9 +102,14 @@ class GroundTruthBuilder {
     bool NeedsScan(std::size_t index) const;
     /// Adds a scan's points (sensor frame). Safe to call concurrently for scans of different segments.
     void AddScan(std::size_t index, const std::vector<Eigen::Vector3f>& points_in_sensor);
-    /// Segment `segment`'s whole voxel set, made beforehand (SegmentVoxelFile): instead of AddScan for
-    /// its scans. Dropped when no candidate pair needs the segment.
-    void AddSegmentVoxels(std::size_t segment, PackedVoxels voxels);
+    /// The sets are stored (SegmentVoxelFile): `load(s)` gives segment s's set, and Settle loads each
+    /// when a pair needs it and keeps at most about `budget_bytes` of them between batches (the least
+    /// recently used are dropped and loaded again if a later pair needs them). A long drive's revisits
+    /// would otherwise hold most sets until its end (~300 MB at 100,000 16-beam scans). Instead of
+    /// AddScan; the result is the same.
+    void LoadSetsFrom(std::function<PackedVoxels(std::size_t)> load, std::size_t budget_bytes);
+    /// Called after each batch Settle completes, with the number of segments settled so far (progress).
+    void OnSettled(std::function<void(std::size_t)> settled) { on_settled_ = std::move(settled); }
     /// For a caller that adds scans in order: every scan below `next_scan` has been added (or skipped).
     /// Computes the overlap of each candidate pair whose later segment is complete and frees every set
     /// no later pair needs, so a long sequence holds only the sets still waiting for a revisit. The
@@ -126,6 +131,10 @@ class GroundTruthBuilder {
     Eigen::Vector3i CellOf(std::size_t segment) const;
     /// The candidates of segment j: earlier segments within max_range, at least the travel gap before it.
     std::vector<std::size_t> EarlierPartners(std::size_t j) const;
+    /// LoadSetsFrom: segment s's set in memory, used by batch `batch`; returns the bytes it added.
+    std::size_t MakeResident(std::size_t s, std::size_t batch);
+    /// LoadSetsFrom: drops the least recently used sets until at most the budget is held.
+    void EvictToBudget();
 
     Poses T_world_sensor_;
     GtClosureConfig config_;
@@ -139,6 +148,12 @@ class GroundTruthBuilder {
     std::size_t num_candidates_ = 0;         // pairs settled
     std::vector<std::size_t> candidates_by_distance_, closing_by_distance_;  // settled pairs per segment_length
     std::vector<GtSegmentPair> closing_;     // settled pairs with overlap > min_overlap
+    // LoadSetsFrom's cache
+    std::function<PackedVoxels(std::size_t)> load_;
+    std::function<void(std::size_t)> on_settled_;
+    std::size_t budget_bytes_ = 0, held_bytes_ = 0, batches_ = 0;
+    std::vector<char> resident_;             // per segment: its set is in voxels_
+    std::vector<std::size_t> last_used_;     // per segment: the last batch that used it
 };
 
 /// 16 hex digits identifying the inputs: every pose bit, every config field and `salt` (e.g. the

@@ -162,7 +162,7 @@ std::set<std::pair<std::size_t, std::size_t>> FalseClosures(const nlohmann::json
 }  // namespace
 
 ReportInput LoadReportInput(const RunFolder& run) {
-    const RunState state = ReadRunState(run);
+    RunState state = ReadRunState(run);  // its closures move into the input: one copy of their matches
     ReportInput input;
     input.title = "revisit: " + fs::path(state.dataset).filename().string();
     input.dataset_summary = {"dataset: " + state.dataset, "format: " + state.format, "poses: " + state.poses_source,
@@ -195,19 +195,19 @@ ReportInput LoadReportInput(const RunFolder& run) {
     }
     const nlohmann::json metrics = ReadMetrics(run);
     const auto false_closures = FalseClosures(metrics);
-    for (const auto& record : state.closures) {
+    for (auto& record : state.closures) {
         // The proximity pass's registrations (no images matched: 0 votes, 0 inliers) are shown when accepted.
         const bool proximity = record.method == "proximity";
         input.proximity_registered += proximity;
         if (record.method != "density" && !(proximity && record.accepted)) continue;
         ClosureEntry entry;
-        entry.closure = record.closure;
+        entry.closure = std::move(record.closure);
         entry.proximity = proximity;
         entry.accepted = record.accepted;
         entry.reached_threshold = record.refined;
         entry.verified = record.refined && record.refinement.accepted;
         entry.reason = record.accepted ? "graph weight " + FormatNumber(record.graph_weight, 2) : record.reason;
-        if (record.accepted && false_closures.count({record.closure.query_scans.first, record.closure.ref_scans.first})) {
+        if (record.accepted && false_closures.count({entry.closure.query_scans.first, entry.closure.ref_scans.first})) {
             entry.reason += ", FALSE against the reference poses";
             entry.judged_false = true;
         }
@@ -218,13 +218,13 @@ ReportInput LoadReportInput(const RunFolder& run) {
         }
         if (state.has_reference()) {
             const Eigen::Isometry3d T_est = entry.T_query_ref_refined ? Eigen::Isometry3d(*entry.T_query_ref_refined)
-                                                                      : Eigen::Isometry3d(record.closure.T_query_ref);
-            const ClosurePoseError error = ClosureErrorAgainst(state.reference, record.closure.query_scans.first,
-                                                               record.closure.ref_scans.first, T_est);
+                                                                      : Eigen::Isometry3d(entry.closure.T_query_ref);
+            const ClosurePoseError error = ClosureErrorAgainst(state.reference, entry.closure.query_scans.first,
+                                                               entry.closure.ref_scans.first, T_est);
             entry.gt_translation_error = error.translation;
             entry.gt_rotation_error = error.yaw_deg;
         }
-        input.closures.push_back(entry);
+        input.closures.push_back(std::move(entry));
     }
     input.pr_curves = ReadPrCurves(run);
     input.ape_before = ApeSeries(state, state.odometry);

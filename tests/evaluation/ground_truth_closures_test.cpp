@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <numeric>
 #include <sstream>
 
 namespace revisit {
@@ -203,6 +204,50 @@ TEST_F(SquareLoop, SettlingAsTheScansArriveGivesTheSameClosuresAndFreesTheSetsOn
         for (std::size_t k = 0; k < batch.segment_pairs.size(); ++k)
             EXPECT_EQ(closures.segment_pairs[k].overlap, batch.segment_pairs[k].overlap);
     }
+}
+
+TEST_F(SquareLoop, StoredSetsWithinABudgetGiveTheSameClosuresAndAreLoadedAgainWhenDropped) {
+    const auto batch = ComputeGroundTruthClosures(poses, points, config());
+    // Each segment's set as SegmentVoxelFile stores it.
+    const auto segments = CutSegments(poses, config().segment_length);
+    std::vector<PackedVoxels> stored(segments.size());
+    std::size_t all_bytes = 0;
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+        for (std::size_t scan = segments[s].first_scan; scan <= segments[s].last_scan; ++scan)
+            AddVoxels(stored[s], poses[scan], points(scan), config().voxel_size, config().voxel_subsample);
+        all_bytes += stored[s].bytes.size();
+    }
+    const auto build = [&](std::size_t budget, std::vector<std::size_t>& loads, std::size_t& peak) {
+        GroundTruthBuilder builder(poses, config());
+        loads.assign(segments.size(), 0);
+        builder.LoadSetsFrom(
+            [&](std::size_t s) {
+                ++loads[s];
+                peak = std::max(peak, builder.HeldBytes());
+                return stored[s];
+            },
+            budget);
+        return builder.Finish();
+    };
+    std::vector<std::size_t> ample_loads, tight_loads;
+    std::size_t ample_peak = 0, tight_peak = 0;
+    const auto ample = build(all_bytes, ample_loads, ample_peak);
+    const auto tight = build(3 * all_bytes / segments.size(), tight_loads, tight_peak);
+    for (const GtClosures* closures : {&ample, &tight}) {
+        EXPECT_EQ(closures->scan_pairs, batch.scan_pairs);
+        EXPECT_EQ(closures->num_candidate_pairs, batch.num_candidate_pairs);
+        ASSERT_EQ(closures->segment_pairs.size(), batch.segment_pairs.size());
+        for (std::size_t k = 0; k < batch.segment_pairs.size(); ++k)
+            EXPECT_EQ(closures->segment_pairs[k].overlap, batch.segment_pairs[k].overlap);
+    }
+    // With room for every set each is read once, and only the sets some pair needs.
+    EXPECT_EQ(*std::max_element(ample_loads.begin(), ample_loads.end()), 1u);
+    EXPECT_LT(std::accumulate(ample_loads.begin(), ample_loads.end(), std::size_t{0}), segments.size());
+    // With room for a few, the first lap's sets are dropped while they wait and read again for the revisit,
+    // and far fewer bytes are held.
+    EXPECT_GT(std::accumulate(tight_loads.begin(), tight_loads.end(), std::size_t{0}),
+              std::accumulate(ample_loads.begin(), ample_loads.end(), std::size_t{0}));
+    EXPECT_LT(tight_peak, ample_peak / 2);
 }
 
 TEST_F(SquareLoop, VoxelSubsamplingApproximatesTheOverlap) {
