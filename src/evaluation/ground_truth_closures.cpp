@@ -126,27 +126,47 @@ void GroundTruthBuilder::EvictToBudget() {
     }
 }
 
+void GroundTruthBuilder::BoundOverlapsWith(std::function<VoxelColumns(std::size_t)> columns) {
+    columns_of_ = std::move(columns);
+    columns_.assign(segments_.size(), std::nullopt);
+}
+
+bool GroundTruthBuilder::MayClose(std::size_t earlier, std::size_t later) {
+    if (!columns_of_) return true;
+    for (const std::size_t s : {earlier, later})
+        if (!columns_[s]) columns_[s] = columns_of_(s);
+    const VoxelColumns& a = *columns_[earlier];
+    const VoxelColumns& b = *columns_[later];
+    const std::size_t smaller = std::min(a.size, b.size);
+    if (smaller == 0) return false;  // the overlap of an empty set is 0
+    // The overlap is common / smaller, computed as this (monotone in common): at most the bound's.
+    return static_cast<double>(CommonVoxelsAtMost(a, b)) / static_cast<double>(smaller) > config_.min_overlap;
+}
+
 void GroundTruthBuilder::Settle(std::size_t next_scan) {
     // Complete segments in batches: their pairs' overlaps in parallel, a bounded list at a time.
     constexpr std::size_t kBatchPairs = 1 << 16;
     while (settled_ < segments_.size() && segments_[settled_].last_scan < next_scan) {
         std::vector<GtSegmentPair> pairs;
+        std::vector<std::size_t> measured;  // the pairs whose overlap is computed (the rest cannot close: 0)
         std::size_t end = settled_;
         const std::size_t batch = ++batches_;
         std::size_t batch_bytes = 0;  // loaded for this batch (LoadSetsFrom)
         while (end < segments_.size() && segments_[end].last_scan < next_scan && pairs.size() < kBatchPairs) {
             // With stored sets a batch also ends once its sets fill the budget: one batch's sets are in memory at once.
             if (load_ && end > settled_ && batch_bytes > budget_bytes_) break;
-            const std::vector<std::size_t> partners = EarlierPartners(end);
-            if (load_ && !partners.empty()) {
-                batch_bytes += MakeResident(end, batch);
-                for (const std::size_t i : partners) batch_bytes += MakeResident(i, batch);
+            for (const std::size_t i : EarlierPartners(end)) {
+                if (MayClose(i, end)) {
+                    if (load_) batch_bytes += MakeResident(end, batch) + MakeResident(i, batch);
+                    measured.push_back(pairs.size());
+                }
+                pairs.push_back({i, end, 0.0});
             }
-            for (const std::size_t i : partners) pairs.push_back({i, end, 0.0});
             ++end;
         }
-        tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
-            pairs[k].overlap = OverlapCoefficientAbove(voxels_[pairs[k].earlier], voxels_[pairs[k].later], config_.min_overlap);
+        tbb::parallel_for(std::size_t{0}, measured.size(), [&](std::size_t k) {
+            GtSegmentPair& pair = pairs[measured[k]];
+            pair.overlap = OverlapCoefficientAbove(voxels_[pair.earlier], voxels_[pair.later], config_.min_overlap);
         });
         num_candidates_ += pairs.size();
         for (const auto& pair : pairs) {
@@ -167,6 +187,7 @@ void GroundTruthBuilder::Settle(std::size_t next_scan) {
         const auto drop = [this](std::size_t s) {
             if (load_ && resident_[s]) held_bytes_ -= voxels_[s].bytes.size(), resident_[s] = 0;
             voxels_[s] = PackedVoxels{};
+            if (columns_of_) columns_[s].reset();
         };
         for (const auto& pair : pairs)
             if (last_later_[pair.earlier] == pair.later) drop(pair.earlier);

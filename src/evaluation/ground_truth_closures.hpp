@@ -108,6 +108,10 @@ class GroundTruthBuilder {
     /// would otherwise hold most sets until its end (~300 MB at 100,000 16-beam scans). Instead of
     /// AddScan; the result is the same.
     void LoadSetsFrom(std::function<PackedVoxels(std::size_t)> load, std::size_t budget_bytes);
+    /// `columns(s)` gives segment s's VoxelColumns: a pair they prove cannot close is settled without
+    /// its sets (with LoadSetsFrom, neither is loaded for it). Each is asked for once, when first
+    /// needed, and kept until its segment's last pair. The result is the same.
+    void BoundOverlapsWith(std::function<VoxelColumns(std::size_t)> columns);
     /// Called after each batch Settle completes, with the number of segments settled so far (progress).
     void OnSettled(std::function<void(std::size_t)> settled) { on_settled_ = std::move(settled); }
     /// For a caller that adds scans in order: every scan below `next_scan` has been added (or skipped).
@@ -135,6 +139,8 @@ class GroundTruthBuilder {
     std::size_t MakeResident(std::size_t s, std::size_t batch);
     /// LoadSetsFrom: drops the least recently used sets until at most the budget is held.
     void EvictToBudget();
+    /// False when the columns (BoundOverlapsWith) prove the pair's overlap is at most min_overlap.
+    bool MayClose(std::size_t earlier, std::size_t later);
 
     Poses T_world_sensor_;
     GtClosureConfig config_;
@@ -144,6 +150,8 @@ class GroundTruthBuilder {
     std::vector<char> needed_;               // per segment
     std::vector<std::size_t> last_later_;    // per segment: the last later segment it pairs with (or none)
     std::vector<PackedVoxels> voxels_;       // per segment
+    std::function<VoxelColumns(std::size_t)> columns_of_;  // BoundOverlapsWith
+    std::vector<std::optional<VoxelColumns>> columns_;    // per segment, while its pairs wait
     std::size_t settled_ = 0;                // segments [0, settled_) have every pair settled
     std::size_t num_candidates_ = 0;         // pairs settled
     std::vector<std::size_t> candidates_by_distance_, closing_by_distance_;  // settled pairs per segment_length

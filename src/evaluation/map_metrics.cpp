@@ -45,7 +45,8 @@ std::size_t MapIndexOfScan(const std::vector<MapRange>& maps, std::size_t scan) 
 MapRecall ComputeMapRecall(const std::vector<MapRange>& maps, const std::vector<MapClosureForEval>& closures,
                            const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
     std::vector<char> revisits(maps.size(), 0), found(maps.size(), 0);
-    const std::vector<ScanPair> sorted = SortedUniquePairs(gt_scan_pairs);
+    std::vector<ScanPair> storage;
+    const std::vector<ScanPair>& sorted = AsSortedUniquePairs(gt_scan_pairs, storage);
     for (const auto& pair : sorted) {
         const std::size_t a = MapIndexOfScan(maps, std::min(pair.first, pair.second));
         const std::size_t b = MapIndexOfScan(maps, std::max(pair.first, pair.second));
@@ -84,7 +85,8 @@ MapMetrics EvaluateMapClosures(const std::vector<MapClosureForEval>& closures, c
                                const std::vector<ScanPair>& gt_scan_pairs, const MapMetricsConfig& config) {
     MapMetrics metrics;
     std::vector<double> translation_errors, yaw_errors;
-    const std::vector<ScanPair> sorted = SortedUniquePairs(gt_scan_pairs);
+    std::vector<ScanPair> storage;
+    const std::vector<ScanPair>& sorted = AsSortedUniquePairs(gt_scan_pairs, storage);
     for (std::size_t k = 0; k < closures.size(); ++k) {
         const MapClosureForEval& c = closures[k];
         if (c.inliers < config.min_inliers) continue;

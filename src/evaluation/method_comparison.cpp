@@ -56,7 +56,8 @@ PrSweepResult ScoreMapClosures(const std::vector<MapClosureForEval>& closures, c
     // A run's maps partition its scans, so two closures predict a common scan pair only when they join
     // the same two maps: each map pair's closures are expanded and counted on their own, and the whole
     // prediction (tens of millions of pairs on a long drive) is never held at once.
-    const std::vector<ScanPair> truth = SortedUniquePairs(ground_truth);
+    std::vector<ScanPair> storage;
+    const std::vector<ScanPair>& truth = AsSortedUniquePairs(ground_truth, storage);
     std::vector<std::size_t> order(closures.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return MapPairOf(closures[a]) < MapPairOf(closures[b]); });

@@ -78,7 +78,8 @@ void KeepBestScorePerPair(std::vector<ScoredPair>& predicted, Acceptance accepta
 PrSweepResult SweepPrecisionRecall(std::vector<ScoredPair> predicted, const std::vector<ScanPair>& ground_truth,
                                    const std::vector<double>& thresholds, Acceptance acceptance) {
     // Sorted vectors, not hash containers: a node per pair was the evaluation's memory peak.
-    const std::vector<ScanPair> truth = SortedUniquePairs(ground_truth);
+    std::vector<ScanPair> storage;
+    const std::vector<ScanPair>& truth = AsSortedUniquePairs(ground_truth, storage);
     KeepBestScorePerPair(predicted, acceptance);
     ThresholdCounts counts(thresholds, acceptance);
     for (std::size_t k = 0, t = 0; k < predicted.size(); ++k) {  // one merge with the sorted truth

@@ -5,6 +5,7 @@
 #include "evaluation/ring_key_index.hpp"
 #include "evaluation/scan_context_file.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -15,26 +16,36 @@
 namespace revisit {
 namespace {
 
-/// Column c of `descriptor` lands at (c + shift) mod cols (SCManager's circshift).
-float ShiftedColumnEntry(const Eigen::MatrixXf& bins, int row, int column, int shift) {
-    const int cols = static_cast<int>(bins.cols());
-    return bins(row, ((column - shift) % cols + cols) % cols);
+/// Each column's squared norm, summed over the rows in order (the sums DirectDistance's per-column loop
+/// would make: the same whatever the shift, so made once).
+std::vector<double> ColumnSquaredNorms(const Eigen::MatrixXf& bins) {
+    std::vector<double> norms(static_cast<std::size_t>(bins.cols()), 0.0);
+    for (int c = 0; c < bins.cols(); ++c) {
+        double sum = 0.0;
+        for (int r = 0; r < bins.rows(); ++r) {
+            const double v = bins(r, c);
+            sum += v * v;
+        }
+        norms[static_cast<std::size_t>(c)] = sum;
+    }
+    return norms;
 }
 
-/// 1 - mean cosine similarity over columns that are non-empty in both (SCManager::distDirectSC).
-double DirectDistance(const Eigen::MatrixXf& query, const Eigen::MatrixXf& candidate, int shift) {
+/// 1 - mean cosine similarity over columns that are non-empty in both (SCManager::distDirectSC), the
+/// candidate's column c - shift (mod cols) against the query's column c (SCManager's circshift).
+double DirectDistance(const Eigen::MatrixXf& query, const std::vector<double>& query_norms, const Eigen::MatrixXf& candidate,
+                      const std::vector<double>& candidate_norms, int shift) {
+    const int cols = static_cast<int>(query.cols()), rows = static_cast<int>(query.rows());
     double sum_similarity = 0.0;
     int num_columns = 0;
-    for (int c = 0; c < query.cols(); ++c) {
-        double dot = 0.0, norm_q = 0.0, norm_c = 0.0;
-        for (int r = 0; r < query.rows(); ++r) {
-            const double q = query(r, c);
-            const double v = ShiftedColumnEntry(candidate, r, c, shift);
-            dot += q * v;
-            norm_q += q * q;
-            norm_c += v * v;
-        }
+    for (int c = 0; c < cols; ++c) {
+        const int source = c - shift < 0 ? c - shift + cols : c - shift;  // shift in [0, cols)
+        const double norm_q = query_norms[static_cast<std::size_t>(c)], norm_c = candidate_norms[static_cast<std::size_t>(source)];
         if (norm_q == 0.0 || norm_c == 0.0) continue;
+        const float* q = query.col(c).data();
+        const float* v = candidate.col(source).data();
+        double dot = 0.0;
+        for (int r = 0; r < rows; ++r) dot += static_cast<double>(q[r]) * static_cast<double>(v[r]);
         sum_similarity += dot / std::sqrt(norm_q * norm_c);
         ++num_columns;
     }
@@ -49,7 +60,7 @@ int CoarseShift(const Eigen::VectorXf& query_key, const Eigen::VectorXf& candida
     for (int shift = 0; shift < n; ++shift) {
         double squared = 0.0;
         for (int c = 0; c < n; ++c) {
-            const double d = query_key(c) - candidate_key(((c - shift) % n + n) % n);
+            const double d = query_key(c) - candidate_key(c - shift < 0 ? c - shift + n : c - shift);
             squared += d * d;
         }
         if (squared < best) {
@@ -107,9 +118,10 @@ ScanContextMatch ScanContextDistance(const ScanContextDescriptor& query, const S
     const int radius = static_cast<int>(std::round(0.5 * config.search_ratio * cols));
     ScanContextMatch best;
     best.distance = std::numeric_limits<double>::infinity();
+    const std::vector<double> query_norms = ColumnSquaredNorms(query.bins), candidate_norms = ColumnSquaredNorms(candidate.bins);
     for (int offset = -radius; offset <= radius; ++offset) {
         const int shift = ((coarse + offset) % cols + cols) % cols;
-        const double distance = DirectDistance(query.bins, candidate.bins, shift);
+        const double distance = DirectDistance(query.bins, query_norms, candidate.bins, candidate_norms, shift);
         if (distance < best.distance) best = {distance, shift};
     }
     return best;
@@ -133,7 +145,7 @@ std::vector<ScanContextCandidate> Search(const std::vector<Eigen::VectorXf>& rin
         const std::size_t searchable = rebuilt_at + 1 - config.exclude_recent;
         const auto nearest = index.Nearest(ring_keys[q], searchable, config.num_candidates);
         if (nearest.empty()) return;
-        decltype(auto) query = descriptor(q);
+        const ScanContextDescriptor query = descriptor(q);  // a copy: `descriptor` may reuse its storage
         for (const auto& [squared, s] : nearest) {
             const ScanContextMatch match = ScanContextDistance(query, descriptor(s), config);
             per_query[q].push_back({q, s, match.distance, match.shift});
@@ -154,7 +166,25 @@ std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContex
 }
 
 std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config) {
-    return Search(descriptors.ring_keys(), [&](std::size_t scan) { return descriptors.Get(scan); }, config);
+    // Neighbouring queries (one thread takes a run of them) verify mostly the same earlier scans: each
+    // thread keeps the descriptors it read last instead of reading and decompressing them again.
+    constexpr std::size_t kCachedPerThread = 256;
+    struct Slot {
+        std::size_t scan = std::numeric_limits<std::size_t>::max();
+        ScanContextDescriptor descriptor;
+    };
+    tbb::enumerable_thread_specific<std::vector<Slot>> caches([] { return std::vector<Slot>(kCachedPerThread); });
+    return Search(
+        descriptors.ring_keys(),
+        [&](std::size_t scan) -> const ScanContextDescriptor& {
+            Slot& slot = caches.local()[scan % kCachedPerThread];
+            if (slot.scan != scan) {
+                slot.descriptor = descriptors.Get(scan);
+                slot.scan = scan;
+            }
+            return slot.descriptor;
+        },
+        config);
 }
 
 std::vector<ScoredPair> ScanContextPairs(const std::vector<ScanContextCandidate>& candidates) {

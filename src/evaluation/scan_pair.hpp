@@ -33,6 +33,17 @@ inline std::vector<ScanPair> SortedUniquePairs(const std::vector<ScanPair>& pair
     return sorted;
 }
 
+/// `pairs` itself when it already is what SortedUniquePairs makes (a ground truth's scan pairs are),
+/// else SortedUniquePairs(pairs), kept in `storage`: a long drive's ground truth is not copied.
+inline const std::vector<ScanPair>& AsSortedUniquePairs(const std::vector<ScanPair>& pairs, std::vector<ScanPair>& storage) {
+    bool canonical = true;
+    for (std::size_t k = 0; k < pairs.size() && canonical; ++k)
+        canonical = pairs[k].first <= pairs[k].second && (k == 0 || pairs[k - 1] < pairs[k]);
+    if (canonical) return pairs;
+    storage = SortedUniquePairs(pairs);
+    return storage;
+}
+
 /// A predicted scan-level closure with the detector's score (inliers, or a descriptor distance).
 struct ScoredPair {
     ScanPair pair;

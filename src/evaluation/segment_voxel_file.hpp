@@ -4,7 +4,8 @@
 /// and each finished segment's set goes to a scratch file (ScratchRecords, compressed: ~2.5 KB per scan
 /// of a 16-beam drive at car speed). The evaluation then reads the sets back
 /// instead of reading (or, for `sim:`, ray-casting) every scan a second time, and holds only the sets
-/// still waiting for a revisit, as when it reads the scans.
+/// still waiting for a revisit, as when it reads the scans. Each set's column counts (VoxelColumns) go
+/// to a second scratch file: they settle most candidate pairs without the sets.
 #include "evaluation/ground_truth_closures.hpp"
 #include "evaluation/scratch_records.hpp"
 #include "evaluation/voxel_set.hpp"
@@ -35,11 +36,14 @@ class SegmentVoxelFile {
     const std::vector<GtSegment>& segments() const { return cutter_.segments(); }
     /// Segment `s`'s voxel set, exactly as accumulated. Safe to call from several threads.
     PackedVoxels Load(std::size_t s) const;
+    /// ColumnsOf(Load(s)), from a record of its own (a few hundred bytes: read without the set).
+    VoxelColumns LoadColumns(std::size_t s) const;
 
   private:
     void WriteOpenSegment();
 
     ScratchRecords records_;           ///< one per written segment
+    ScratchRecords columns_;           ///< its VoxelColumns, one per written segment
     SegmentCutter cutter_;
     std::vector<std::size_t> voxels_;  ///< per written segment: its voxel count
     PackedVoxels open_;                ///< the last segment's set, not written yet

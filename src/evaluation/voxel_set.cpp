@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <utility>
 
 #include "core/mix_bits.hpp"
 
@@ -214,5 +216,56 @@ double OverlapCoefficientAbove(const PackedVoxels& a, const PackedVoxels& b, dou
 }
 
 double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) { return OverlapCoefficientAbove(a, b, -1.0); }
+
+VoxelColumns ColumnsOf(const PackedVoxels& set) {
+    constexpr int kColumnShift = 3;  // 8 blocks of 4 voxels a side
+    constexpr std::uint64_t kAxis = (std::uint64_t{1} << 19) - 1;
+    tsl::robin_map<std::uint64_t, std::uint64_t> counts;  // column (x << 32 | y) -> voxels
+    PackedReader reader(set);
+    for (Block block{}; reader.Next(block);) {
+        const std::uint64_t x = (block.key >> 38) >> kColumnShift, y = ((block.key >> 19) & kAxis) >> kColumnShift;
+        counts[(x << 32) | y] += static_cast<std::uint64_t>(PopCount(block.mask));
+    }
+    VoxelColumns columns;
+    columns.size = set.size;
+    if (counts.empty()) return columns;
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> sorted(counts.begin(), counts.end());
+    std::sort(sorted.begin(), sorted.end());
+    columns.x0 = static_cast<std::uint32_t>(sorted.front().first >> 32);
+    columns.y0 = std::numeric_limits<std::uint32_t>::max();
+    for (const auto& [key, count] : sorted) columns.y0 = std::min(columns.y0, static_cast<std::uint32_t>(key));
+    columns.cells.reserve(sorted.size());
+    for (const auto& [key, count] : sorted) {
+        const std::uint64_t dx = (key >> 32) - columns.x0, dy = (key & 0xFFFFFFFFu) - columns.y0;
+        if (dx > 0xFF || dy > 0xFF || count > 0xFFFF) {
+            columns.cells.clear();
+            columns.bounded = false;
+            return columns;
+        }
+        columns.cells.push_back(static_cast<std::uint32_t>(dx << 24 | dy << 16 | count));
+    }
+    return columns;
+}
+
+std::size_t CommonVoxelsAtMost(const VoxelColumns& a, const VoxelColumns& b) {
+    if (!a.bounded || !b.bounded) return std::min(a.size, b.size);
+    // The columns' absolute (x, y), in the order both lists are sorted in.
+    const auto column = [](const VoxelColumns& c, std::uint32_t cell) {
+        return (std::uint64_t{c.x0 + (cell >> 24)} << 32) | (c.y0 + ((cell >> 16) & 0xFF));
+    };
+    std::size_t common = 0;
+    for (std::size_t i = 0, j = 0; i < a.cells.size() && j < b.cells.size();) {
+        const std::uint64_t ka = column(a, a.cells[i]), kb = column(b, b.cells[j]);
+        if (ka < kb) {
+            ++i;
+        } else if (kb < ka) {
+            ++j;
+        } else {
+            common += std::min(a.cells[i] & 0xFFFF, b.cells[j] & 0xFFFF);
+            ++i, ++j;
+        }
+    }
+    return common;
+}
 
 }  // namespace revisit

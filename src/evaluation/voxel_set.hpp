@@ -33,4 +33,19 @@ double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b);
 /// long drive do not close, and this is where the ground truth spends its time).
 double OverlapCoefficientAbove(const PackedVoxels& a, const PackedVoxels& b, double min_overlap);
 
+/// A set's voxels counted per vertical column of 8 x 8 blocks (16 m square at 0.5 m voxels, every
+/// height): a few hundred bytes that bound the overlap of two sets without reading either. Two sets
+/// share at most the smaller count of each column they both reach, and on a long drive most
+/// candidate pairs (views of a place from tens of metres apart) are proven not to close by that alone.
+struct VoxelColumns {
+    std::uint32_t x0 = 0, y0 = 0;       ///< the lowest column along each axis
+    std::vector<std::uint32_t> cells;  ///< (x - x0) << 24 | (y - y0) << 16 | count, sorted
+    std::size_t size = 0;              ///< voxels of the set
+    bool bounded = true;               ///< false: columns beyond 255 apart or with over 65535 voxels (no bound)
+};
+
+VoxelColumns ColumnsOf(const PackedVoxels& set);
+/// At least |A n B| for the sets whose columns these are (their smaller size when either is unbounded).
+std::size_t CommonVoxelsAtMost(const VoxelColumns& a, const VoxelColumns& b);
+
 }  // namespace revisit

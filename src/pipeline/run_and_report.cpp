@@ -1,5 +1,7 @@
 #include "pipeline/run_and_report.hpp"
 
+#include "core/cpu_time.hpp"
+
 #include "pipeline/evaluate.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/report_builder.hpp"
@@ -34,6 +36,7 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
     const RunFolder run(options.out);
     std::optional<RunEvaluation> evaluation;
     PostRunSeconds after_chain;
+    after_chain.chain_cpu = ProcessCpuSeconds();
     bool report_written = false;
     if (state.complete) {
         const auto start = std::chrono::steady_clock::now();
@@ -45,10 +48,13 @@ RunState RunAndReport(const RunOptions& options, const PipelineConfig& config, s
         evaluation = EvaluateRun(run, ReadRunState(run, false), options, config, log, chain_pass.get());
         after_chain.evaluation = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         chain_pass.reset();  // its scratch files go before the report
+        after_chain.evaluation_cpu = ProcessCpuSeconds() - *after_chain.chain_cpu;
         // Ctrl-C after the chain: the run folder is complete; the report is skipped (an earlier one stays).
         if (config.output.write_report && !InterruptRequested()) {
             try {
+                const double report_start = ProcessCpuSeconds();
                 after_chain.report = WriteRunReport(run, log, {options.quiet, {}});
+                after_chain.report_cpu = ProcessCpuSeconds() - report_start;
                 report_written = true;
             } catch (const Interrupted&) {
             }

@@ -92,6 +92,20 @@ void PrintRunSummary(std::ostream& out, const RunState& state, const std::option
     if (after_chain.evaluation) out << ", evaluation " << *after_chain.evaluation << " s";
     if (after_chain.report) out << ", report " << *after_chain.report << " s";
     out << "; peak memory of the chain " << state.peak_rss_kb / 1024 << " MiB\n";
+    if (after_chain.chain_cpu && !state.odometry.empty()) {
+        // Per scan, the evaluation's share includes what the chain made of each scan for it (evaluation.pass).
+        const double scans = static_cast<double>(state.odometry.size());
+        const auto pass = state.timings.find("evaluation.pass");
+        const double pass_s = pass == state.timings.end() ? 0.0 : pass->second.total_ms / 1000.0;
+        out << "  CPU time          chain " << *after_chain.chain_cpu << " s (" << std::setprecision(2)
+            << 1e3 * *after_chain.chain_cpu / scans << " ms per scan)";
+        if (after_chain.evaluation_cpu) {
+            out << ", evaluation " << std::setprecision(1) << *after_chain.evaluation_cpu << " s after it + " << pass_s
+                << " s in it (" << std::setprecision(2) << 1e3 * (*after_chain.evaluation_cpu + pass_s) / scans << " ms per scan)";
+        }
+        if (after_chain.report_cpu) out << ", report " << std::setprecision(1) << *after_chain.report_cpu << " s";
+        out << std::setprecision(1) << '\n';
+    }
     if (!state.odometry_fallbacks.empty()) {
         out << "  odometry          DIVERGED or degenerate on " << state.odometry_fallbacks.size() << " of " << state.odometry.size()
             << " scans (first at scan " << state.odometry_fallbacks.front()

@@ -13,6 +13,8 @@ namespace revisit {
 struct PostRunSeconds {
     std::optional<double> evaluation;  ///< [s]
     std::optional<double> report;      ///< [s]
+    /// [s] the process's CPU time (ProcessCpuSeconds) up to the chain's end, and spent by each step after it.
+    std::optional<double> chain_cpu, evaluation_cpu, report_cpu;
 };
 
 void PrintRunSummary(std::ostream& out, const RunState& state, const std::optional<RunEvaluation>& evaluation,

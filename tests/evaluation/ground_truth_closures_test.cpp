@@ -250,6 +250,35 @@ TEST_F(SquareLoop, StoredSetsWithinABudgetGiveTheSameClosuresAndAreLoadedAgainWh
     EXPECT_LT(tight_peak, ample_peak / 2);
 }
 
+TEST_F(SquareLoop, ColumnBoundsSettleMostPairsWithoutTheirSetsAndGiveTheSameClosures) {
+    const auto batch = ComputeGroundTruthClosures(poses, points, config());
+    const auto segments = CutSegments(poses, config().segment_length);
+    std::vector<PackedVoxels> stored(segments.size());
+    for (std::size_t s = 0; s < segments.size(); ++s)
+        for (std::size_t scan = segments[s].first_scan; scan <= segments[s].last_scan; ++scan)
+            AddVoxels(stored[s], poses[scan], points(scan), config().voxel_size, config().voxel_subsample);
+    const auto build = [&](bool bounded, std::size_t& loads, std::size_t& column_loads) {
+        GroundTruthBuilder builder(poses, config());
+        builder.LoadSetsFrom([&](std::size_t s) { return ++loads, stored[s]; }, std::size_t{1} << 30);
+        if (bounded) builder.BoundOverlapsWith([&](std::size_t s) { return ++column_loads, ColumnsOf(stored[s]); });
+        return builder.Finish();
+    };
+    std::size_t plain_loads = 0, bounded_loads = 0, column_loads = 0, unused = 0;
+    const auto plain = build(false, plain_loads, unused);
+    const auto bounded = build(true, bounded_loads, column_loads);
+    EXPECT_EQ(bounded.scan_pairs, batch.scan_pairs);
+    EXPECT_EQ(bounded.num_candidate_pairs, batch.num_candidate_pairs);
+    EXPECT_EQ(bounded.candidates_by_distance, plain.candidates_by_distance);
+    EXPECT_EQ(bounded.closing_by_distance, plain.closing_by_distance);
+    ASSERT_EQ(bounded.segment_pairs.size(), batch.segment_pairs.size());
+    ASSERT_GT(batch.segment_pairs.size(), 0u);
+    for (std::size_t k = 0; k < batch.segment_pairs.size(); ++k)
+        EXPECT_EQ(bounded.segment_pairs[k].overlap, batch.segment_pairs[k].overlap);
+    // Fewer sets read: the pairs of views far apart along the square are settled by their columns.
+    EXPECT_LT(bounded_loads, plain_loads);
+    EXPECT_LE(column_loads, segments.size());  // each asked for once
+}
+
 TEST_F(SquareLoop, VoxelSubsamplingApproximatesTheOverlap) {
     const auto exact = ComputeGroundTruthClosures(poses, points, config());
     auto sampled_config = config();

@@ -119,5 +119,21 @@ TEST(RangeThresholds, CoversScanContextSweepWithoutDrift) {
     EXPECT_NEAR(thresholds.back(), 0.95, 1e-12);
 }
 
+TEST(AsSortedUniquePairs, TakesACanonicalListAsItIsAndSortsAnyOther) {
+    const std::vector<ScanPair> canonical = {{0, 5}, {0, 7}, {2, 2}, {3, 9}};
+    std::vector<ScanPair> storage;
+    EXPECT_EQ(&AsSortedUniquePairs(canonical, storage), &canonical);  // not copied
+    EXPECT_TRUE(storage.empty());
+    // Reversed, repeated or out of order: sorted like SortedUniquePairs.
+    for (const std::vector<ScanPair>& other : {std::vector<ScanPair>{{5, 0}, {0, 7}, {2, 2}, {9, 3}},
+                                               std::vector<ScanPair>{{0, 5}, {0, 5}, {0, 7}, {2, 2}, {3, 9}},
+                                               std::vector<ScanPair>{{3, 9}, {0, 5}, {2, 2}, {0, 7}}}) {
+        const std::vector<ScanPair>& sorted = AsSortedUniquePairs(other, storage);
+        EXPECT_EQ(&sorted, &storage);
+        EXPECT_EQ(sorted, canonical);
+        EXPECT_EQ(sorted, SortedUniquePairs(other));
+    }
+}
+
 }  // namespace
 }  // namespace revisit

@@ -124,5 +124,31 @@ TEST(SearchScanContext, FollowsTheRebuildScheduleAndFindsTheRevisit) {
     EXPECT_LT(pairs.back().pair.first, pairs.back().pair.second);
 }
 
+TEST(SearchScanContext, FromAFileAsFromMemoryOverALongSequence) {
+    // Long enough that the search's per-thread descriptor cache reuses its slots, with revisits whose
+    // query and candidate share a slot (256 scans apart).
+    std::mt19937 rng(21);
+    const ScanContextConfig config;
+    std::vector<ScanContextDescriptor> descriptors;
+    std::vector<std::vector<Eigen::Vector3f>> clouds;
+    for (int k = 0; k < 700; ++k) clouds.push_back(k >= 256 && k % 3 == 0 ? RotateAboutZ(clouds[std::size_t(k - 256)], 0.1 * k) : RandomCloud(rng, 300));
+    for (const auto& cloud : clouds) descriptors.push_back(MakeScanContext(cloud, config));
+    const auto candidates = SearchScanContext(descriptors, config);
+    test::TempDir dir;
+    ScanContextFile stored(dir / "sc.scratch", config.num_rings, config.num_sectors);
+    for (const auto& descriptor : descriptors) stored.Add(descriptor);
+    const auto from_file = SearchScanContext(stored, config);
+    ASSERT_EQ(from_file.size(), candidates.size());
+    std::size_t revisits_found = 0;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        EXPECT_EQ(from_file[k].query, candidates[k].query);
+        EXPECT_EQ(from_file[k].candidate, candidates[k].candidate);
+        EXPECT_EQ(from_file[k].distance, candidates[k].distance);
+        EXPECT_EQ(from_file[k].shift, candidates[k].shift);
+        revisits_found += candidates[k].candidate + 256 == candidates[k].query;
+    }
+    EXPECT_GT(revisits_found, 100u);
+}
+
 }  // namespace
 }  // namespace revisit

@@ -64,6 +64,12 @@ TEST(SegmentVoxelFile, HoldsTheSegmentsAndSetsOfAPassOverTheScans) {
         const PackedVoxels loaded = file.Load(s);
         EXPECT_EQ(loaded.bytes, accumulated.bytes) << "segment " << s;
         EXPECT_EQ(loaded.size, accumulated.size) << "segment " << s;
+        const VoxelColumns columns = file.LoadColumns(s), expected_columns = ColumnsOf(accumulated);
+        EXPECT_EQ(columns.x0, expected_columns.x0);
+        EXPECT_EQ(columns.y0, expected_columns.y0);
+        EXPECT_EQ(columns.cells, expected_columns.cells);
+        EXPECT_EQ(columns.size, accumulated.size);
+        EXPECT_EQ(columns.bounded, expected_columns.bounded);
     }
     EXPECT_GT(multi_scan, 5u);  // the stops make long segments
     EXPECT_THROW(file.Load(expected.size()), std::out_of_range);

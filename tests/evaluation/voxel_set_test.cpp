@@ -107,6 +107,47 @@ TEST(PackedVoxels, SameVoxelsAndOverlapsAsOneKeyPerVoxel) {
     EXPECT_EQ(OverlapCoefficient(PackedVoxels{}, PackedVoxels{}), 0.0);
 }
 
+TEST(VoxelColumns, BoundTheCommonVoxelsAndProveFarViewsApart) {
+    // Pairs of scans 0 to 80 m apart (a car's views of one street): the columns' bound is never below the
+    // voxels the sets share, equals it for a set with itself, and for views far apart proves what the merge
+    // would find (the share stays below the ground truth's 0.5).
+    std::mt19937 rng(7);
+    const auto scan_at = [&](double x, double y) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = Eigen::Vector3d(x, y, 0.0);
+        return ScanVoxels(pose, Cloud(rng, 40.0f, 0.5), 0.5, 1);
+    };
+    const PackedVoxels here = scan_at(-3.0, 2.0);
+    const VoxelColumns columns_here = ColumnsOf(here);
+    EXPECT_TRUE(columns_here.bounded);
+    EXPECT_EQ(columns_here.size, here.size);
+    std::size_t sum = 0;
+    for (const std::uint32_t cell : columns_here.cells) sum += cell & 0xFFFF;
+    EXPECT_EQ(sum, here.size);
+    EXPECT_EQ(CommonVoxelsAtMost(columns_here, columns_here), here.size);
+    bool proved_far_apart = false;
+    for (const double distance : {0.0, 5.0, 20.0, 45.0, 80.0, 200.0}) {
+        const PackedVoxels there = scan_at(-3.0 + distance, 2.0 - distance / 3);
+        const VoxelColumns columns_there = ColumnsOf(there);
+        const std::size_t smaller = std::min(here.size, there.size);
+        const double overlap = OverlapCoefficient(here, there);
+        const std::size_t common = static_cast<std::size_t>(std::llround(overlap * static_cast<double>(smaller)));
+        const std::size_t bound = CommonVoxelsAtMost(columns_here, columns_there);
+        EXPECT_GE(bound, common) << distance << " m";
+        EXPECT_EQ(bound, CommonVoxelsAtMost(columns_there, columns_here));
+        if (static_cast<double>(bound) / static_cast<double>(smaller) <= 0.5) proved_far_apart = true;
+        if (distance >= 200.0) EXPECT_EQ(bound, 0u);
+    }
+    EXPECT_TRUE(proved_far_apart);
+    // Empty, and sets spanning more columns than the summary holds: no bound (the smaller size).
+    EXPECT_EQ(ColumnsOf(PackedVoxels{}).cells.size(), 0u);
+    PackedVoxels wide = scan_at(0.0, 0.0);
+    MergeVoxels(wide, scan_at(5000.0, 0.0));
+    const VoxelColumns columns_wide = ColumnsOf(wide);
+    EXPECT_FALSE(columns_wide.bounded);
+    EXPECT_EQ(CommonVoxelsAtMost(columns_wide, columns_here), std::min(wide.size, here.size));
+}
+
 TEST(PackedVoxels, MergingScanSetsInAnyOrderGivesTheAccumulatedSet) {
     // What the chain's pass relies on: each scan's set made on its own (any thread), merged later in
     // the run's order, is byte for byte the set AddVoxels accumulates scan after scan.

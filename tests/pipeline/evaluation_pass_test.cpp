@@ -40,7 +40,7 @@ TEST(EvaluationPass, GivesTheEvaluationOfASecondPassOverTheData) {
     ASSERT_TRUE(pass->Covers(state.odometry.size()));
     EXPECT_FALSE(pass->Covers(state.odometry.size() + 1));
     const RunFolder run(options.out);
-    EXPECT_EQ(ScratchFiles(run.root()), 2u);  // the segments' voxel sets and ScanContext's descriptors
+    EXPECT_EQ(ScratchFiles(run.root()), 3u);  // the segments' voxel sets and their columns, ScanContext's descriptors
 
     const auto from_chain = EvaluateRun(run, ReadRunState(run, false), options, config, log, pass.get());
     ASSERT_TRUE(from_chain);

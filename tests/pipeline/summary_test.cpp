@@ -64,5 +64,26 @@ TEST(RunSummary, WallTimeIncludesEvaluationAndReportEachShown) {
     EXPECT_EQ(Summary(1.0, 0.2).find("report"), std::string::npos);  // not run: not shown
 }
 
+TEST(RunSummary, CpuTimePerScanCountsTheEvaluationsShareMadeInTheChain) {
+    RunState state;
+    state.odometry.assign(1000, Eigen::Isometry3d::Identity());
+    state.wall_seconds = 12.0;
+    state.timings["evaluation.pass"] = StageTimer{500.0, 1000};  // 0.5 s of CPU in the chain
+    PostRunSeconds after_chain;
+    after_chain.evaluation = 2.0;
+    after_chain.chain_cpu = 20.0;
+    after_chain.evaluation_cpu = 1.5;
+    after_chain.report_cpu = 3.0;
+    std::ostringstream out;
+    PrintRunSummary(out, state, std::nullopt, after_chain);
+    EXPECT_NE(out.str().find("CPU time          chain 20.0 s (20.00 ms per scan), evaluation 1.5 s after it + 0.5 s in it "
+                             "(2.00 ms per scan), report 3.0 s\n"),
+              std::string::npos)
+        << out.str();
+    std::ostringstream without;
+    PrintRunSummary(without, state, std::nullopt, {});
+    EXPECT_EQ(without.str().find("CPU time"), std::string::npos);  // not measured: not shown
+}
+
 }  // namespace
 }  // namespace revisit
