@@ -275,6 +275,16 @@ bool RefinementQuery::MadeWith(const RefinementConfig& config) const {
            config.max_surface_variation == max_surface_variation_ && config.min_normal_neighbours == min_normal_neighbours_;
 }
 
+bool RefinementQuery::SamePlanesAs(const Eigen::Vector3d& up_in_query) const {
+    bool planar = false;  // as the constructor decides it
+    if (up_in_query.squaredNorm() > 0.0) {
+        const auto [low, high] = HeightRange(points_, up_in_query.normalized());
+        planar = !points_.empty() && high - low < kOneHeight;
+    }
+    if (planar != planar_) return false;
+    return !planar || up_in_query.normalized() == up_.normalized();
+}
+
 RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                                  const std::vector<Eigen::Vector3d>& query_points_in_query,
                                  const Eigen::Isometry3d& T_query_ref_guess, const RefinementConfig& config,

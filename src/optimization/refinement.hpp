@@ -95,6 +95,9 @@ class RefinementQuery {
     double high() const { return high_; }
     /// Whether these planes are the ones `config` asks for.
     bool MadeWith(const RefinementConfig& config) const;
+    /// Whether the same points prepared with `up_in_query` would have these planes (they differ only
+    /// where the map lies at one height along either vertical: a 2D laser's).
+    bool SamePlanesAs(const Eigen::Vector3d& up_in_query) const;
 
   private:
     std::vector<Eigen::Vector3d> points_;

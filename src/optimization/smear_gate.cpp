@@ -26,4 +26,11 @@ RefinementResult RegisterConsecutive(const std::vector<Eigen::Vector3d>& ref_poi
     return RefineAlignment(ref_points_in_ref, query_points_in_query, T_query_ref_odometry, consecutive);
 }
 
+RefinementResult RegisterConsecutive(const std::vector<Eigen::Vector3d>& ref_points_in_ref, const RefinementQuery& query,
+                                     const Eigen::Isometry3d& T_query_ref_odometry, const RefinementConfig& config) {
+    RefinementConfig consecutive = config;
+    consecutive.vertical_search = 0.0;
+    return RefineAlignment(ref_points_in_ref, query, T_query_ref_odometry, consecutive);
+}
+
 }  // namespace revisit

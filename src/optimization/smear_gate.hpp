@@ -42,5 +42,9 @@ class SmearGate {
 RefinementResult RegisterConsecutive(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                                      const std::vector<Eigen::Vector3d>& query_points_in_query,
                                      const Eigen::Isometry3d& T_query_ref_odometry, const RefinementConfig& config);
+/// The same with the query map prepared; identical results when `query.SamePlanesAs(UnitZ)` (the
+/// vertical the points alone are registered with).
+RefinementResult RegisterConsecutive(const std::vector<Eigen::Vector3d>& ref_points_in_ref, const RefinementQuery& query,
+                                     const Eigen::Isometry3d& T_query_ref_odometry, const RefinementConfig& config);
 
 }  // namespace revisit

@@ -152,16 +152,18 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
     corrected_nodes_.push_back(corrected_nodes_.empty() ? map.T_world_map
                                                         : corrected_nodes_.back() * nodes_[nodes_.size() - 2].inverse() *
                                                               map.T_world_map);
+    std::optional<RefinementQuery> planes;  // the new map's, made once (NewMapPlanes)
     if (refinement_gate_.active() && map.id > 0 && nodes_.size() >= 2) {
         start = std::chrono::steady_clock::now();
         refinement_gate_.AddConsecutive(ToDouble(store_->Get(map.id - 1)), ToDouble(stored),
-                                        nodes_.back().inverse() * nodes_[nodes_.size() - 2], map.first_scan);
+                                        nodes_.back().inverse() * nodes_[nodes_.size() - 2], map.first_scan,
+                                        NewMapPlanes(stored, planes));
         Time("refinement.consecutive", MillisecondsSince(start));
     }
 
     const std::size_t first_new = closures_.size();
     const std::size_t verified_before = verified_edges_.size();
-    for (const auto& closure : closures) closures_.push_back(VerifyClosure(closure, stored));
+    for (const auto& closure : closures) closures_.push_back(VerifyClosure(closure, stored, planes));
     if (verified_edges_.size() > verified_before) ApplyConsistency();
     update.closures.assign(closures_.begin() + std::ptrdiff_t(first_new), closures_.end());
     if (elevation_detector_) {
@@ -301,7 +303,16 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
     return verified;
 }
 
-ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points) {
+const RefinementQuery* ClosurePipeline::NewMapPlanes(const std::vector<Eigen::Vector3f>& stored,
+                                                     std::optional<RefinementQuery>& planes) const {
+    if (stored.empty()) return nullptr;
+    // The planes depend only on the settings MadeWith checks, which the RMS gate's updates leave alone.
+    if (!planes) planes.emplace(ToDouble(stored), refinement_gate_.Refinement(), UpInMap(detector_.maps().back()));
+    return &*planes;
+}
+
+ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points,
+                                             std::optional<RefinementQuery>& query_planes) {
     ClosureRecord record;
     record.closure = closure;
     if (closure.num_inliers < config_.detector.min_inliers) {
@@ -310,7 +321,7 @@ ClosureRecord ClosurePipeline::VerifyClosure(const Closure& closure, const std::
         return record;
     }
     // Closures are verified as their query map is added: it is the detector's newest map.
-    Refine(record, query_points, detector_.maps().back(), refinement_gate_.Refinement(), true);
+    Refine(record, query_points, detector_.maps().back(), refinement_gate_.Refinement(), true, NewMapPlanes(query_points, query_planes));
     return record;
 }
 
@@ -323,7 +334,8 @@ void ClosurePipeline::Refine(ClosureRecord& record, const std::vector<Eigen::Vec
     // A 2D pair below the overlap gate is judged by what both maps observed (free_space_gate.hpp).
     const RefinementConfig gates = free_space_.Registration(refinement, closure.query_id, closure.ref_id);
     // The query map's levelling gives the vertical along which the closure's height is searched.
-    record.refinement = prepared ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), gates)
+    record.refinement = prepared && prepared->MadeWith(gates)
+                            ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), gates)
                                  : RefineAlignment(ToDouble(ref_points), ToDouble(query_points),
                                                    Eigen::Isometry3d(closure.T_query_ref), gates, UpInMap(query_map));
     free_space_.Judge(record.refinement, refinement, closure.query_id, closure.ref_id);

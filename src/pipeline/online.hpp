@@ -76,7 +76,12 @@ class ClosurePipeline {
 
   private:
     PipelineUpdate ProcessMap(const LocalMap& map);
-    ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points);
+    /// `query_planes`: the new map's planes, made on the first closure that needs them and kept for the others.
+    ClosureRecord VerifyClosure(const Closure& closure, const std::vector<Eigen::Vector3f>& query_points,
+                                std::optional<RefinementQuery>& query_planes);
+    /// The new map prepared for registration (RefinementQuery), once per map: its registration onto its
+    /// predecessor and each of its closures use the same planes.
+    const RefinementQuery* NewMapPlanes(const std::vector<Eigen::Vector3f>& stored, std::optional<RefinementQuery>& planes) const;
     /// Refines `record`'s closure against the stored reference map; a verified one enters the consistency
     /// check (`may_displace`: see ClosureConsistency::Add). `prepared`: the query map already prepared
     /// for registration (the proximity pass registers several references onto one query map).

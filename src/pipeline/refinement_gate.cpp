@@ -21,9 +21,12 @@ RefinementGate::RefinementGate(const PipelineConfig& config)
 
 void RefinementGate::AddConsecutive(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                                     const std::vector<Eigen::Vector3d>& query_points_in_query,
-                                    const Eigen::Isometry3d& T_query_ref_odometry, std::size_t first_scan) {
+                                    const Eigen::Isometry3d& T_query_ref_odometry, std::size_t first_scan,
+                                    const RefinementQuery* prepared) {
     if (!active()) return;
-    smear_gate_.Add(RegisterConsecutive(ref_points_in_ref, query_points_in_query, T_query_ref_odometry, refinement_),
+    const bool reuse = prepared && prepared->MadeWith(refinement_) && prepared->SamePlanesAs(Eigen::Vector3d::UnitZ());
+    smear_gate_.Add(reuse ? RegisterConsecutive(ref_points_in_ref, *prepared, T_query_ref_odometry, refinement_)
+                          : RegisterConsecutive(ref_points_in_ref, query_points_in_query, T_query_ref_odometry, refinement_),
                     refinement_.min_correspondences);
     if (!raised_at_ && smear_gate_.MaxRms(refinement_.max_rms) > refinement_.max_rms) raised_at_ = first_scan;
 }

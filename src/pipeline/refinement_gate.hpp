@@ -23,9 +23,12 @@ class RefinementGate {
     bool active() const { return smear_gate_.active(); }
     /// Registers the map that just closed (`query`, first scan `first_scan`) onto its predecessor at
     /// the odometry's relative pose, and lets the gate follow the RMS that overlap shows.
+    /// `prepared`: the query map's planes when already made (used where they are the ones its points
+    /// give under the registration's vertical, RefinementQuery::SamePlanesAs; the result is the same).
     void AddConsecutive(const std::vector<Eigen::Vector3d>& ref_points_in_ref,
                         const std::vector<Eigen::Vector3d>& query_points_in_query,
-                        const Eigen::Isometry3d& T_query_ref_odometry, std::size_t first_scan);
+                        const Eigen::Isometry3d& T_query_ref_odometry, std::size_t first_scan,
+                        const RefinementQuery* prepared = nullptr);
     /// The refinement's settings for the next verdicts.
     RefinementConfig Refinement() const;
     /// The raised gate as a setting update for run.json (none when it stayed at the configured value).

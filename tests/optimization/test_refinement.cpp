@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/se3.hpp"
 #include "optimization/point_grid.hpp"
+#include "optimization/smear_gate.hpp"
 #include "optimization/refinement.hpp"
 #include "optimization/cloud_fixtures.hpp"
 
@@ -236,6 +237,33 @@ TEST(RefineAlignment, APreparedQueryMapGivesTheSameResults) {
     RefinementConfig other = cases[0].config;
     other.normal_radius = 2.0;
     EXPECT_THROW(RefineAlignment(cases[0].ref, RefinementQuery(cases[0].query, cases[0].config), cases[0].guess, other), ConfigError);
+}
+
+/// A map's planes prepared under its levelled vertical serve its registration onto its predecessor
+/// (under z, without a vertical search) where they are the same planes: a 3D map. A 2D laser's map
+/// lies at one height, where the vertical decides its planes.
+TEST(RegisterConsecutive, APreparedQueryMapGivesTheSameResultWhereItsPlanesAreTheSame) {
+    const auto street = testing::SyntheticStreet(100.0, 20.0, 3);
+    const Eigen::Isometry3d T_street = PoseFromXYZRPY(-20.0, 3.0, 0.0, 0.0, 0.0, Degrees(-60.0));
+    const auto query = testing::Transform(T_street, testing::Subsample(street, 2, 1));
+    const auto ref = testing::Subsample(street, 2, 0);
+    const Eigen::Vector3d tilted_up = Eigen::Vector3d(0.02, -0.01, 1.0).normalized();
+    const RefinementQuery prepared(query, RefinementConfig{}, tilted_up);
+    EXPECT_TRUE(prepared.SamePlanesAs(Eigen::Vector3d::UnitZ()));
+    const RefinementResult plain = RegisterConsecutive(ref, query, T_street * IssuePerturbation(), RefinementConfig{});
+    const RefinementResult reused = RegisterConsecutive(ref, prepared, T_street * IssuePerturbation(), RefinementConfig{});
+    EXPECT_TRUE(plain.T_query_ref.matrix() == reused.T_query_ref.matrix());
+    EXPECT_EQ(plain.rms, reused.rms);
+    EXPECT_EQ(plain.overlap, reused.overlap);
+    EXPECT_EQ(plain.num_correspondences, reused.num_correspondences);
+    // A flat map: planes in the plane orthogonal to its own vertical only.
+    const auto floor = PlanarFloor(0.02, 2);
+    const RefinementQuery flat(floor, PlanarLaserConfig());
+    EXPECT_TRUE(flat.planar());
+    EXPECT_TRUE(flat.SamePlanesAs(Eigen::Vector3d::UnitZ()));
+    EXPECT_TRUE(flat.SamePlanesAs(2.0 * Eigen::Vector3d::UnitZ()));
+    EXPECT_FALSE(flat.SamePlanesAs(tilted_up));
+    EXPECT_FALSE(RefinementQuery(floor, PlanarLaserConfig(), tilted_up).SamePlanesAs(Eigen::Vector3d::UnitZ()));
 }
 
 TEST(RefineAlignment, GivesTheSameResultWithOneThread) {
