@@ -13,13 +13,19 @@
 namespace revisit {
 namespace {
 
+/// A block key's axes: 19 bits each, x highest (VoxelAxes::Block).
+constexpr int kBlockAxisBits = 19;
+constexpr std::uint64_t kBlockAxisMask = (std::uint64_t{1} << kBlockAxisBits) - 1;
+std::uint64_t BlockX(std::uint64_t block) { return block >> (2 * kBlockAxisBits); }
+std::uint64_t BlockY(std::uint64_t block) { return (block >> kBlockAxisBits) & kBlockAxisMask; }
+
 /// A voxel's 21-bit axis values (around an offset: +-1048576 voxels, +-524 km at 0.5 m); the subsampling
 /// hash takes its key (x << 42) | (y << 21) | z, so it keeps the same voxels whatever the packing.
 struct VoxelAxes {
     std::uint64_t x, y, z;
     std::uint64_t Key() const { return (x << 42) | (y << 21) | z; }
     /// 19 bits per axis: the block of 4 x 4 x 4 voxels, in the same order as the voxel keys.
-    std::uint64_t Block() const { return ((x >> 2) << 38) | ((y >> 2) << 19) | (z >> 2); }
+    std::uint64_t Block() const { return ((x >> 2) << (2 * kBlockAxisBits)) | ((y >> 2) << kBlockAxisBits) | (z >> 2); }
     std::uint64_t Bit() const { return std::uint64_t{1} << (((x & 3) << 4) | ((y & 3) << 2) | (z & 3)); }
 };
 
@@ -219,11 +225,10 @@ double OverlapCoefficient(const PackedVoxels& a, const PackedVoxels& b) { return
 
 VoxelColumns ColumnsOf(const PackedVoxels& set) {
     constexpr int kColumnShift = 3;  // 8 blocks of 4 voxels a side
-    constexpr std::uint64_t kAxis = (std::uint64_t{1} << 19) - 1;
     tsl::robin_map<std::uint64_t, std::uint64_t> counts;  // column (x << 32 | y) -> voxels
     PackedReader reader(set);
     for (Block block{}; reader.Next(block);) {
-        const std::uint64_t x = (block.key >> 38) >> kColumnShift, y = ((block.key >> 19) & kAxis) >> kColumnShift;
+        const std::uint64_t x = BlockX(block.key) >> kColumnShift, y = BlockY(block.key) >> kColumnShift;
         counts[(x << 32) | y] += static_cast<std::uint64_t>(PopCount(block.mask));
     }
     VoxelColumns columns;

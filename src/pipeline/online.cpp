@@ -334,8 +334,7 @@ void ClosurePipeline::Refine(ClosureRecord& record, const std::vector<Eigen::Vec
     // A 2D pair below the overlap gate is judged by what both maps observed (free_space_gate.hpp).
     const RefinementConfig gates = free_space_.Registration(refinement, closure.query_id, closure.ref_id);
     // The query map's levelling gives the vertical along which the closure's height is searched.
-    record.refinement = prepared && prepared->MadeWith(gates)
-                            ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), gates)
+    record.refinement = prepared ? RefineAlignment(ToDouble(ref_points), *prepared, Eigen::Isometry3d(closure.T_query_ref), gates)
                                  : RefineAlignment(ToDouble(ref_points), ToDouble(query_points),
                                                    Eigen::Isometry3d(closure.T_query_ref), gates, UpInMap(query_map));
     free_space_.Judge(record.refinement, refinement, closure.query_id, closure.ref_id);

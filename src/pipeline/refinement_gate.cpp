@@ -24,7 +24,7 @@ void RefinementGate::AddConsecutive(const std::vector<Eigen::Vector3d>& ref_poin
                                     const Eigen::Isometry3d& T_query_ref_odometry, std::size_t first_scan,
                                     const RefinementQuery* prepared) {
     if (!active()) return;
-    const bool reuse = prepared && prepared->MadeWith(refinement_) && prepared->SamePlanesAs(Eigen::Vector3d::UnitZ());
+    const bool reuse = prepared && prepared->SamePlanesAs(Eigen::Vector3d::UnitZ());
     smear_gate_.Add(reuse ? RegisterConsecutive(ref_points_in_ref, *prepared, T_query_ref_odometry, refinement_)
                           : RegisterConsecutive(ref_points_in_ref, query_points_in_query, T_query_ref_odometry, refinement_),
                     refinement_.min_correspondences);
