@@ -62,6 +62,8 @@ void BindInputAndOdometry(ConfigSchema& s, PipelineConfig& c) {
           Range{0, 1e6});
     s.Add("odometry.recent_travel_check", &o.recent_travel_check, "",
           "2D lasers without wheel odometry: also register each frame to the voxels seen within the last max_range of travel, and keep that pose when it explains the scan clearly better there (a drifted earlier pass pulled the frame)");
+    s.Add("odometry.beam_check", &o.beam_check, "",
+          "2D lasers without wheel odometry: a correlative match over twice the windows wins only when it puts no clearly more returns where earlier beams passed, or beams through mapped walls, than the first match (a room turned by 90 deg)");
     s.Add("odometry.deskew", &o.deskew, "", "constant-velocity motion compensation (paper-era: off)");
     s.Add("odometry.azimuth_clockwise", &o.azimuth_clockwise, "", "deskew without point times: sweep direction (KITTI: clockwise)");
     s.Add("odometry.planar", &o.planar, "", "estimate x, y, yaw only (2D lasers)");

@@ -149,6 +149,10 @@ void LidarOdometry::ApplyMapUpdate() {
         recent_map_.AddPoints(points_in_world_);
         recent_map_.RemoveFarFrom(map_update_origin_, map_update_radius_, map_update_travel_ - config_.max_range);
     }
+    if (free_space_) {
+        free_space_->AddBeams(map_update_origin_, points_in_world_, 2.0 * config_.VoxelSize());
+        free_space_->RemoveFarFrom(map_update_origin_, map_update_radius_);
+    }
     map_update_pending_ = false;
 }
 
@@ -206,7 +210,18 @@ Eigen::Isometry3d LidarOdometry::CorrelativeStart(const VoxelHashMap& map, const
         wider.angular_window = std::min(2.0 * wider.angular_window, M_PI);
         gather(wider.linear_window);
         const CorrelativeMatch retry = MatchCorrelative2D(reference_, source, T_centre, wider);
-        if (retry.valid && retry.score > match.score) match = retry;
+        // A better score alone does not decide: a room turned by 90 deg, or a corridor's alias, may explain
+        // more returns than the true pose, whose scan looks into new territory (orebro scan 48 with 3 cm
+        // of range noise). Such a pose puts returns where earlier beams passed and beams through mapped
+        // walls: the retry is kept only when it contradicts the beams no more than the first match.
+        bool take = retry.valid && retry.score > match.score;
+        if (take && free_space_) {
+            const double margin = 2.0 * config_.VoxelSize();
+            const auto first = CountBeamConflicts(*free_space_, map, source, match.T_world_sensor, margin).Total();
+            const auto wider_conflicts = CountBeamConflicts(*free_space_, map, source, retry.T_world_sensor, margin).Total();
+            take = !ClearlyMore(static_cast<double>(wider_conflicts), static_cast<double>(first));
+        }
+        if (take) match = retry;
     }
     stats_.correlative_used = match.valid;
     stats_.correlative_score = match.score;
@@ -295,6 +310,9 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
     if (poses_.empty())
         recent_check_active_ = config_.planar && config_.correlative_start && config_.recent_travel_check &&
                                !(config_.use_prior && scan.T_odom_sensor);
+    // The same logs keep where their beams passed (the beam check of a wider correlative search).
+    if (poses_.empty() && config_.planar && config_.correlative_start && config_.beam_check && !(config_.use_prior && scan.T_odom_sensor))
+        free_space_.emplace(config_.VoxelSize());
     const Eigen::Isometry3d last_pose = poses_.empty() ? Eigen::Isometry3d::Identity() : poses_.back();
     const Eigen::Isometry3d delta = poses_.empty() ? Eigen::Isometry3d::Identity() : PredictMotion(scan);
     Eigen::Isometry3d T_predicted = Orthonormalized(last_pose * delta);

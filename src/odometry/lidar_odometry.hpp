@@ -10,6 +10,7 @@
 #include "core/scan.hpp"
 #include "core/trajectory.hpp"
 #include "odometry/adaptive_threshold.hpp"
+#include "odometry/free_space.hpp"
 #include "odometry/odometry_config.hpp"
 #include "odometry/preprocess.hpp"
 #include "odometry/prior_bias.hpp"
@@ -106,6 +107,8 @@ class LidarOdometry {
     /// The voxels seen within the last max_range of travel (CheckRecentTravel), when recent_check_active_.
     VoxelHashMap recent_map_;
     bool recent_check_active_ = false;  ///< planar, no wheel odometry, odometry.recent_travel_check
+    /// Where the frames' beams passed, for a 2D laser without wheel odometry (odometry.beam_check).
+    std::optional<FreeSpace2D> free_space_;
     AdaptiveThreshold threshold_;
     Poses poses_;
     Eigen::Isometry3d last_delta_ = Eigen::Isometry3d::Identity();

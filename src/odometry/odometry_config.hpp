@@ -74,6 +74,11 @@ struct OdometryConfig {
     /// max_range of travel, and that pose replaces the whole map's when it explains the scan clearly
     /// better against them (a drifted earlier pass pulled the frame; odometry/recent_travel_check.cpp).
     bool recent_travel_check = true;
+    /// Planar, without wheel odometry: the odometry keeps where its frames' beams passed, and a retry of
+    /// the correlative match over twice the windows is kept only when it does not contradict those beams
+    /// clearly more than the first match (returns in crossed space, beams through mapped walls;
+    /// odometry/free_space.hpp).
+    bool beam_check = true;
     bool deskew = false;             ///< constant-velocity motion compensation of each sweep
     bool azimuth_clockwise = true;   ///< deskew without point times: sweep direction (KITTI: clockwise, s = 0.5 (1 - atan2(y, x) / pi))
     bool planar = false;             ///< estimate only x, y, yaw (2D lasers: z, roll, pitch are unobservable)

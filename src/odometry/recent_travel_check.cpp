@@ -15,14 +15,6 @@
 #include "odometry/lidar_odometry.hpp"
 
 namespace revisit {
-namespace {
-
-/// Counts of points within a voxel of a map, `a` clearly above `b`: by more than three standard
-/// deviations of their difference (each count about Poisson: two differ by sqrt(a + b) by chance).
-bool ClearlyMore(double a, double b) { return a - b > 3.0 * std::sqrt(a + b); }
-
-}  // namespace
-
 void LidarOdometry::CheckRecentTravel(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& last_pose,
                                       const Eigen::Isometry3d& delta, Eigen::Isometry3d& T_start, Eigen::Isometry3d& T_new) {
     // Nothing older than the recent travel within the map's radius: both maps are the same.
