@@ -33,10 +33,41 @@ namespace {
 /// (squared distance, scan) in the order the search defines: nearer first, ties by lower scan.
 using Neighbour = std::pair<float, std::size_t>;
 
-void KeepNearest(std::vector<Neighbour>& found, std::size_t k) {
-    std::sort(found.begin(), found.end());
-    if (found.size() > k) found.resize(k);
-}
+/// The k nearest scans so far, over every block a query visits (nanoflann's result-set interface):
+/// each tree is searched only within the k-th distance the earlier, larger blocks already found, once.
+/// The trees measure distances in their own summation order; a point is re-measured as the direct
+/// comparison measures it (`distance`), and the trees search within the k-th of those plus a margin
+/// far above float rounding, so no point that ties or beats the k-th is left unvisited.
+template <class Distance>
+class SharedNearest {
+  public:
+    SharedNearest(std::size_t k, const Distance& distance) : k_(k), distance_(distance) { best_.reserve(k + 1); }
+
+    void SetBlockStart(std::size_t start) { start_ = start; }
+    std::size_t size() const { return best_.size(); }
+    bool full() const { return best_.size() == k_; }
+    float worstDist() const { return worst_; }
+    bool addPoint(float, std::size_t index) {
+        Consider(start_ + index);
+        return true;
+    }
+    /// A scan compared directly (the few after the last block).
+    void Consider(std::size_t scan) {
+        const Neighbour candidate{distance_(scan), scan};
+        if (full() && !(candidate < best_.back())) return;
+        best_.insert(std::upper_bound(best_.begin(), best_.end(), candidate), candidate);
+        if (best_.size() > k_) best_.pop_back();
+        if (full()) worst_ = std::nextafter(best_.back().first * (1.0f + 1e-5f), std::numeric_limits<float>::max());
+    }
+    std::vector<Neighbour> Take() { return std::move(best_); }
+
+  private:
+    std::size_t k_;
+    const Distance& distance_;
+    std::size_t start_ = 0;
+    std::vector<Neighbour> best_;  ///< ascending, at most k
+    float worst_ = std::numeric_limits<float>::max();
+};
 
 }  // namespace
 
@@ -83,33 +114,24 @@ std::size_t RingKeyIndex::BlockSlot(int level, std::size_t start) const {
 
 std::vector<Neighbour> RingKeyIndex::Nearest(const Eigen::VectorXf& key, std::size_t prefix, std::size_t k) const {
     prefix = std::min(prefix, keys_.size());
-    std::vector<Neighbour> found;
-    if (k == 0 || prefix == 0) return found;
+    if (k == 0 || prefix == 0) return {};
     if (static_cast<std::size_t>(key.size()) != dims_) throw ConfigError("scan context: ring keys of different sizes");
     const auto distance = [&](std::size_t s) { return (key - keys_[s]).squaredNorm(); };
+    SharedNearest<decltype(distance)> nearest(k, distance);
     std::size_t start = 0;
     if (prefix <= max_prefix_) {
+        // Largest block first: its neighbours bound the search of the smaller ones.
         for (int level = 63; level >= kMinLevel; --level) {
             const std::size_t size = std::size_t{1} << level;
             if ((prefix & size) == 0) continue;
             const Block& block = *blocks_[BlockSlot(level, start)];
-            const std::size_t want = std::min(k, block.size);
-            std::vector<std::size_t> indices(want);
-            std::vector<float> squared(want);
-            const std::size_t got = block.tree->knnSearch(key.data(), want, indices.data(), squared.data());
-            // Every scan as near as the k-th (ties the k-nearest search may have dropped), re-measured
-            // as the direct comparison measures them.
-            std::vector<std::pair<std::size_t, float>> within;
-            const float radius = got == 0 ? 0.0f : std::nextafter(squared[got - 1] * (1.0f + 1e-5f), std::numeric_limits<float>::max());
-            block.tree->radiusSearch(key.data(), radius, within, nanoflann::SearchParams(32, 0.0f, false));
-            for (const auto& [index, ignored] : within) found.push_back({distance(block.start + index), block.start + index});
-            KeepNearest(found, k);
+            nearest.SetBlockStart(block.start);
+            block.tree->findNeighbors(nearest, key.data(), nanoflann::SearchParams(32, 0.0f, false));
             start += size;
         }
     }
-    for (std::size_t s = start; s < prefix; ++s) found.push_back({distance(s), s});
-    KeepNearest(found, k);
-    return found;
+    for (std::size_t s = start; s < prefix; ++s) nearest.Consider(s);
+    return nearest.Take();
 }
 
 }  // namespace revisit

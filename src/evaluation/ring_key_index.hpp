@@ -4,7 +4,9 @@
 /// comparing each query with every earlier scan instead costs O(n^2) over a sequence (an hour of
 /// driving: 36,000 queries x 18,000 keys). Here the keys live in k-d trees over aligned blocks of
 /// 2^j scans (j >= kMinLevel): the first `prefix` scans are the blocks of prefix's binary digits plus
-/// fewer than 2^kMinLevel scans compared directly, so a query visits O(log n) trees.
+/// fewer than 2^kMinLevel scans compared directly, so a query visits O(log n) trees, the largest
+/// first, each searched once within the k-th distance the trees before it found (a search per tree
+/// plus one for its ties cost three times as much on 100,000 scans).
 #include <Eigen/Core>
 #include <cstddef>
 #include <memory>

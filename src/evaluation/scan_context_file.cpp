@@ -24,7 +24,8 @@ ScanContextDescriptor ScanContextFile::Get(std::size_t scan) const {
     const std::size_t cells = std::size_t(rows_) * std::size_t(cols_);
     const std::vector<std::uint8_t> bytes = records_.Read(scan);
     std::vector<float> record(cells + std::size_t(cols_));
-    if (bytes.size() != sizeof(float) * record.size()) throw ConfigError("scan context: a scratch record of another size");
+    if (bytes.size() != sizeof(float) * record.size())
+        throw DatasetError(records_.path(), "scan context " + std::to_string(scan) + ": a scratch record of " + std::to_string(bytes.size()) + " bytes");
     std::memcpy(record.data(), bytes.data(), bytes.size());
     ScanContextDescriptor descriptor;
     descriptor.bins = Eigen::Map<const Eigen::MatrixXf>(record.data(), rows_, cols_);

@@ -25,6 +25,8 @@ class ScratchRecords {
     std::size_t size() const { return places_.size(); }
     /// Record `k` exactly as appended. Safe to call from several threads.
     std::vector<std::uint8_t> Read(std::size_t k) const;
+    /// The temporary file (for messages about a record's contents).
+    const std::filesystem::path& path() const { return scratch_.path(); }
 
   private:
     struct Place {

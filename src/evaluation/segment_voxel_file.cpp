@@ -66,9 +66,9 @@ PackedVoxels SegmentVoxelFile::Load(std::size_t s) const {
 VoxelColumns SegmentVoxelFile::LoadColumns(std::size_t s) const {
     const std::vector<std::uint8_t> bytes = columns_.Read(s);
     VoxelColumns columns;
-    // ScratchRecords returns each record as appended: a length that is not a whole record is a defect.
+    // ScratchRecords returns each record as appended: a length that is not a whole record is damage.
     if (bytes.size() < kColumnsHeader || (bytes.size() - kColumnsHeader) % 4 != 0)
-        throw std::logic_error("segment voxel columns: record " + std::to_string(s) + " has " + std::to_string(bytes.size()) + " bytes");
+        throw DatasetError(columns_.path(), "segment voxel columns " + std::to_string(s) + ": a scratch record of " + std::to_string(bytes.size()) + " bytes");
     std::uint64_t size = 0;
     std::memcpy(&columns.x0, bytes.data(), 4);
     std::memcpy(&columns.y0, bytes.data() + 4, 4);
