@@ -32,7 +32,6 @@ class FreeSpace2D {
     /// a few hundred cells. The set stays within twice the map's disc.
     void RemoveFarFrom(const Eigen::Vector3d& origin, double radius);
     bool Free(const Eigen::Vector3d& point) const { return cells_.count(Key(point)) != 0; }
-    bool Empty() const { return cells_.empty(); }
     std::size_t NumCells() const { return cells_.size(); }
     double cell() const { return cell_; }
 

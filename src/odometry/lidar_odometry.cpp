@@ -306,13 +306,13 @@ Eigen::Isometry3d LidarOdometry::RegisterPrepared(const Scan& scan, PreparedScan
     if (!prepared.PreparedFor(config_)) prepared = PrepareScan(scan, config_);
     stats_ = OdometryFrameStats{};
     stats_.input_points = scan.points.size();
-    // A 2D laser logged without wheel odometry keeps the map of its recent travel alongside (CheckRecentTravel).
-    if (poses_.empty())
-        recent_check_active_ = config_.planar && config_.correlative_start && config_.recent_travel_check &&
-                               !(config_.use_prior && scan.T_odom_sensor);
-    // The same logs keep where their beams passed (the beam check of a wider correlative search).
-    if (poses_.empty() && config_.planar && config_.correlative_start && config_.beam_check && !(config_.use_prior && scan.T_odom_sensor))
-        free_space_.emplace(config_.VoxelSize());
+    // A 2D laser logged without wheel odometry keeps the map of its recent travel alongside (CheckRecentTravel)
+    // and where its beams passed (the beam check of a wider correlative search).
+    if (poses_.empty()) {
+        const bool laser_alone = config_.planar && config_.correlative_start && !(config_.use_prior && scan.T_odom_sensor);
+        recent_check_active_ = laser_alone && config_.recent_travel_check;
+        if (laser_alone && config_.beam_check) free_space_.emplace(config_.VoxelSize());
+    }
     const Eigen::Isometry3d last_pose = poses_.empty() ? Eigen::Isometry3d::Identity() : poses_.back();
     const Eigen::Isometry3d delta = poses_.empty() ? Eigen::Isometry3d::Identity() : PredictMotion(scan);
     Eigen::Isometry3d T_predicted = Orthonormalized(last_pose * delta);
