@@ -186,7 +186,7 @@ void BindRefinementAndGraph(ConfigSchema& s, PipelineConfig& c) {
     s.Add("graph.closure_information_from_registration", &n.closure_information_from_registration, "", "closure information from the 3D registration");
     s.Add("graph.closure_sigma_translation", &n.closure_sigma_translation, "m", "fixed closure noise (paper: 1e3 x identity)", Range{1e-6, 100});
     s.Add("graph.closure_sigma_rotation", &n.closure_sigma_rotation, "rad", "fixed closure noise", Range{1e-6, 10});
-    s.Add("graph.optimize_every_closures", &n.optimize_every_closures, "", "online re-optimization period", Range{1, 100000});
+    s.Add("graph.optimize_every_closures", &n.optimize_every_closures, "", "online re-optimization period (accepted closures; at least a tenth of those in the graph)", Range{1, 100000});
     s.Add("graph.online_time_budget", &n.online_time_budget, "s", "time bound per online update", Range{0.001, 1000});
     s.Add("graph.min_weight", &n.min_weight, "", "closures ending below this robust weight are rejected as inconsistent (0 = keep all)", Range{0, 1});
     auto& pcm = c.consistency;

@@ -44,7 +44,7 @@ struct GraphNoiseConfig {
     bool closure_information_from_registration = false;  ///< else a fixed closure sigma below
     double closure_sigma_translation = 0.03;  ///< [m] ~ 1e3 x identity information (paper)
     double closure_sigma_rotation = 0.03;     ///< [rad]
-    int optimize_every_closures = 1;          ///< online: re-optimize after this many accepted closures
+    int optimize_every_closures = 1;          ///< online: re-optimize after this many accepted closures (or a tenth of the graph's)
     double online_time_budget = 0.2;          ///< [s] per online update (the final batch has none)
     /// After the final optimization, verified closures whose robust weight fell below this are reported
     /// as rejected: the graph found them inconsistent with the odometry and the other closures.

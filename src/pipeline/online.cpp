@@ -187,7 +187,12 @@ PipelineUpdate ClosurePipeline::ProcessMap(const LocalMap& map) {
         std::vector<Eigen::Vector2f>().swap(closure.query_keypoints);
         std::vector<Eigen::Vector2f>().swap(closure.ref_keypoints);
     }
-    if (accepted_since_optimization_ >= config_.graph_noise.optimize_every_closures) Optimize(false);
+    // Each online update optimizes the whole graph: one after every closure adds up quadratically over a
+    // long run (100,000 scans of a city: 441 updates of ~130 ms). Once the graph holds many closures an
+    // update waits for a tenth as many new ones. The outputs come from the final optimization, which
+    // starts from the odometry: they do not depend on when the updates ran.
+    const int every = std::max(config_.graph_noise.optimize_every_closures, static_cast<int>(loop_edges_.size() / 10));
+    if (accepted_since_optimization_ >= every) Optimize(false);
     update.closed_map = maps_.back();
     return update;
 }
@@ -463,7 +468,12 @@ void ClosurePipeline::Optimize(bool final) {
     edges.insert(edges.end(), loop_edges_.begin(), loop_edges_.end());
     PoseGraphConfig graph = config_.graph;
     graph.max_time_s = final ? 0.0 : noise.online_time_budget;
-    const auto result = OptimizePoseGraph(nodes_, edges, graph);
+    // Online, each update starts from the last one's estimate (the maps since chained on by their
+    // odometry): a few iterations from a near solution, where starting from the odometry converged
+    // over the whole graph again each time (11 -> 170 ms per update from 10,000 to 100,000 scans).
+    // The final optimization starts from the odometry: the outputs do not depend on the updates.
+    const bool warm = !final && corrected_nodes_.size() == nodes_.size();
+    const auto result = OptimizePoseGraph(warm ? corrected_nodes_ : nodes_, edges, graph);
     corrected_nodes_ = result.T_world_node;
     for (std::size_t i = 0; i < loop_edges_.size(); ++i) {
         closures_[loop_edge_closure_[i]].graph_weight = result.edge_weights[num_odometry + i];
