@@ -61,6 +61,21 @@ void RefinementCases(const CaseContext& c) {
         c.Add(std::move(measured), "RefineAlignment, " + std::to_string(ref.size() + query.size()) + " points, " +
                                        std::to_string(iterations) + " iterations");
     }
+    {
+        // The proximity pass: one query map prepared once, registered with several references from
+        // guesses within a closure's error and no vertical search.
+        RefinementConfig confirm;
+        confirm.vertical_search = 0.0;
+        std::vector<Eigen::Isometry3d> guesses;
+        for (int k = 0; k < 3; ++k) guesses.push_back(T_true.inverse() * PoseFromXYZRPY(0.1 * k, -0.05 * k, 0, 0, 0, 0.005 * k));
+        Measurement measured = Measure("refinement/prepared query, 3 references", "ms/closure", FigureKind::kMsPerItem,
+                                       c.scale.repeat, [&] {
+                                           const RefinementQuery prepared(query, confirm);
+                                           for (const auto& g : guesses) iterations = RefineAlignment(ref, prepared, g, confirm).iterations;
+                                           return double(guesses.size());
+                                       });
+        c.Add(std::move(measured), "RefinementQuery once, then RefineAlignment x3 (proximity pass)");
+    }
 }
 
 void PoseGraphCases(const CaseContext& c) {

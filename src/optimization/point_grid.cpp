@@ -49,6 +49,26 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_siz
     offsets_.assign(cell_keys_.size() + 1, 0);
     for (std::size_t c = 0; c < counts.size(); ++c) offsets_[c + 1] = offsets_[c] + counts[c];
     std::vector<std::size_t> next(offsets_.begin(), offsets_.end() - 1);
+    if (!cell_keys_.empty()) {
+        Voxel low = cell_keys_.front(), high = cell_keys_.front();
+        for (const Voxel& key : cell_keys_) {
+            low = low.cwiseMin(key);
+            high = high.cwiseMax(key);
+        }
+        const Eigen::Array3d size = (high - low).cast<double>().array() + 1.0;
+        constexpr double kMaxBits = double(1u << 24);  // 2 MiB: beyond, plain lookups
+        if (size.prod() <= kMaxBits) {
+            box_min_ = low;
+            box_size_ = (high - low).array() + 1;
+            occupied_.assign(std::size_t(size.prod()) / 64 + 1, 0);
+            for (const Voxel& key : cell_keys_) {
+                const Voxel offset = key - box_min_;
+                const std::size_t bit = (std::size_t(offset.x()) * std::size_t(box_size_.y()) + std::size_t(offset.y())) *
+                                            std::size_t(box_size_.z()) + std::size_t(offset.z());
+                occupied_[bit >> 6] |= std::uint64_t(1) << (bit & 63);
+            }
+        }
+    }
     sorted_points_.resize(points.size());
     index_.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -64,15 +84,51 @@ void PointGrid::NeighbourCells(std::size_t cell, double radius, std::vector<std:
 }
 
 int PointGrid::FindNearest(const Eigen::Vector3d& query, double max_distance) const {
+    // The answer is the one a visit of the neighbour cells in (dx, dy, dz) order gives, keeping the
+    // last of equally near points. Visiting the query's own cell first finds a near point at once;
+    // then a cell whose box lies farther than it is skipped before its lookup, and a tie is decided by
+    // the place the full visit gives each point (its cell's rank, then its slot), so ties come out the same.
+    // The boxes are widened by a hair: a point's cell comes from a rounded division.
+    const Voxel center = VoxelOf(query, cell_size_);
+    const int reach = Reach(max_distance);
+    const int side = 2 * reach + 1;
+    const double margin = 1e-9 * (1.0 + query.cwiseAbs().maxCoeff());
     int best = -1;
+    int best_rank = -1;
     double best_squared = max_distance * max_distance;
-    ForEachNeighbourSlot(VoxelOf(query, cell_size_), max_distance, [&](std::size_t slot) {
-        const double squared = (sorted_points_[slot] - query).squaredNorm();
-        if (squared <= best_squared) {
-            best_squared = squared;
-            best = index_[slot];
+    const auto visit = [&](const Voxel& key, int rank) {
+        if (!MayBeOccupied(key)) return;
+        const auto cell = cells_.find(key);
+        if (cell == cells_.end()) return;
+        for (std::size_t slot = offsets_[cell->second]; slot < offsets_[cell->second + 1]; ++slot) {
+            const double squared = (sorted_points_[slot] - query).squaredNorm();
+            if (squared < best_squared || (squared == best_squared && rank >= best_rank)) {
+                best_squared = squared;
+                best = index_[slot];
+                best_rank = rank;
+            }
         }
-    });
+    };
+    const int own_rank = (reach * side + reach) * side + reach;
+    visit(center, own_rank);
+    const auto gap = [&](int key, int offset, double coordinate) {
+        if (offset < 0) return std::max(0.0, coordinate - double(key + offset + 1) * cell_size_ - margin);
+        if (offset > 0) return std::max(0.0, double(key + offset) * cell_size_ - coordinate - margin);
+        return 0.0;
+    };
+    for (int dx = -reach; dx <= reach; ++dx) {
+        const double gx = gap(center.x(), dx, query.x());
+        for (int dy = -reach; dy <= reach; ++dy) {
+            const double gy = gap(center.y(), dy, query.y());
+            for (int dz = -reach; dz <= reach; ++dz) {
+                const int rank = ((dx + reach) * side + dy + reach) * side + dz + reach;
+                if (rank == own_rank) continue;
+                const double gz = gap(center.z(), dz, query.z());
+                if (gx * gx + gy * gy + gz * gz > best_squared) continue;
+                visit(center + Voxel(dx, dy, dz), rank);
+            }
+        }
+    }
     return best;
 }
 

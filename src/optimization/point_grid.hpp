@@ -31,6 +31,7 @@ class PointGrid {
     /// Index of the nearest point within `max_distance`, or -1. Fastest when
     /// `max_distance` <= cell size (27 cells); larger distances visit more cells.
     int FindNearest(const Eigen::Vector3d& query, double max_distance) const;
+
     /// Indices of all points within `radius` of `query`.
     std::vector<int> FindWithin(const Eigen::Vector3d& query, double radius) const;
     /// Calls visit(index) for every point within `radius` of `query`, without allocating.
@@ -62,6 +63,7 @@ class PointGrid {
         for (int dx = -reach; dx <= reach; ++dx) {
             for (int dy = -reach; dy <= reach; ++dy) {
                 for (int dz = -reach; dz <= reach; ++dz) {
+                    if (!MayBeOccupied(center + Voxel(dx, dy, dz))) continue;
                     const auto cell = cells_.find(center + Voxel(dx, dy, dz));
                     if (cell != cells_.end()) visit(cell->second);
                 }
@@ -76,7 +78,22 @@ class PointGrid {
         });
     }
 
+    /// False only for a cell no point lies in: one bit per cell of the points' bounding box, so most
+    /// empty neighbours cost a bit test instead of a hash lookup (a registration of two partly
+    /// overlapping maps asks mostly about points far from the other map).
+    bool MayBeOccupied(const Voxel& key) const {
+        if (occupied_.empty()) return true;
+        const Voxel offset = key - box_min_;
+        if ((offset.array() < 0).any() || (offset.array() >= box_size_.array()).any()) return false;
+        const std::size_t bit = (std::size_t(offset.x()) * std::size_t(box_size_.y()) + std::size_t(offset.y())) * std::size_t(box_size_.z()) +
+                                std::size_t(offset.z());
+        return (occupied_[bit >> 6] >> (bit & 63)) & 1u;
+    }
+
     double cell_size_;
+    Voxel box_min_ = Voxel::Zero();
+    Voxel box_size_ = Voxel::Zero();
+    std::vector<std::uint64_t> occupied_;  ///< empty when the box is too large: every cell is looked up
     std::vector<Eigen::Vector3d> sorted_points_;
     std::vector<int> index_;
     std::vector<std::size_t> offsets_;  ///< num_cells() + 1

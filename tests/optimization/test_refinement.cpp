@@ -6,6 +6,8 @@
 #include <array>
 #include <filesystem>
 #include <random>
+#include <tuple>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/se3.hpp"
@@ -321,6 +323,55 @@ TEST(PointGrid, FindsTheNearestPointBeyondOneCell) {
     EXPECT_EQ(grid.FindNearest({2.0, 0, 0}, 0.4), -1);
     EXPECT_EQ(grid.FindNearest({2.0, 0, 0}, 0.6), 1);
     EXPECT_EQ(grid.FindWithin({0, 0, 0}, 0.45).size(), 2u);
+}
+
+// The search starts at the query's own cell, skips cells whose box lies beyond the best point so far
+// and empty cells by their occupancy bit; it must still answer what a visit of every neighbour cell in
+// (dx, dy, dz) order answers, ties included: points snapped to a lattice (as the run folder's map
+// points are) lie at exactly equal distances, and that visit keeps the last of them.
+TEST(PointGrid, FindsWhatAVisitOfEveryNeighbourCellFinds) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uniform(-3.0, 3.0);
+    std::vector<Eigen::Vector3d> near;
+    for (int i = 0; i < 600; ++i) near.emplace_back(uniform(rng), uniform(rng), uniform(rng));
+    for (int i = 0; i < 600; ++i)  // a 0.25 m lattice: many exactly equidistant pairs
+        near.push_back(0.25 * Eigen::Vector3d(std::round(4 * uniform(rng)), std::round(4 * uniform(rng)), std::round(uniform(rng))));
+    // With a far point the cells' bounding box is too large for the occupancy bits: every cell is looked up.
+    std::vector<Eigen::Vector3d> with_far_point = near;
+    with_far_point.emplace_back(4000.0, -3000.0, 2500.0);
+    for (const auto& [cell, points] : {std::pair{0.5, &near}, std::pair{0.9, &near}, std::pair{0.9, &with_far_point}}) {
+        const PointGrid grid(*points, cell);
+        for (const double max_distance : {0.4, cell, 2.0 * cell + 0.1}) {
+            const int reach = int(std::ceil(max_distance / cell));
+            int ties = 0;
+            for (int q = 0; q < 3000; ++q) {
+                // Queries on the lattice too (equal distances to its neighbours) and on cell borders.
+                Eigen::Vector3d query(uniform(rng), uniform(rng), uniform(rng));
+                if (q % 3 == 1) query = 0.125 * (query * 8.0).array().round().matrix();
+                if (q % 3 == 2) query = cell * (query / cell).array().round().matrix();
+                // Every point, in the full visit's order: its cell's place among the neighbours, then its index.
+                const Eigen::Vector3i center = VoxelOf(query, cell);
+                int expected = -1;
+                std::tuple<double, int, int> best{max_distance * max_distance, -1, -1};
+                for (int i = 0; i < int(points->size()); ++i) {
+                    const Eigen::Vector3i d = VoxelOf((*points)[std::size_t(i)], cell) - center;
+                    if (d.cwiseAbs().maxCoeff() > reach) continue;
+                    const double squared = ((*points)[std::size_t(i)] - query).squaredNorm();
+                    const int rank = ((d.x() + reach) * (2 * reach + 1) + d.y() + reach) * (2 * reach + 1) + d.z() + reach;
+                    if (squared > std::get<0>(best)) continue;
+                    if (squared == std::get<0>(best) && std::make_pair(rank, i) < std::make_pair(std::get<1>(best), std::get<2>(best))) {
+                        ++ties;
+                        continue;
+                    }
+                    ties += squared == std::get<0>(best) && expected >= 0;
+                    best = {squared, rank, i};
+                    expected = i;
+                }
+                ASSERT_EQ(grid.FindNearest(query, max_distance), expected) << "cell " << cell << " query " << query.transpose();
+            }
+            EXPECT_GT(ties, 0) << "the queries should meet equidistant points";
+        }
+    }
 }
 
 }  // namespace
