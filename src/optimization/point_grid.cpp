@@ -62,9 +62,7 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_siz
             box_size_ = (high - low).array() + 1;
             occupied_.assign(std::size_t(size.prod()) / 64 + 1, 0);
             for (const Voxel& key : cell_keys_) {
-                const Voxel offset = key - box_min_;
-                const std::size_t bit = (std::size_t(offset.x()) * std::size_t(box_size_.y()) + std::size_t(offset.y())) *
-                                            std::size_t(box_size_.z()) + std::size_t(offset.z());
+                const std::size_t bit = BitOf(key - box_min_);
                 occupied_[bit >> 6] |= std::uint64_t(1) << (bit & 63);
             }
         }

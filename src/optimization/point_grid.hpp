@@ -31,7 +31,6 @@ class PointGrid {
     /// Index of the nearest point within `max_distance`, or -1. Fastest when
     /// `max_distance` <= cell size (27 cells); larger distances visit more cells.
     int FindNearest(const Eigen::Vector3d& query, double max_distance) const;
-
     /// Indices of all points within `radius` of `query`.
     std::vector<int> FindWithin(const Eigen::Vector3d& query, double radius) const;
     /// Calls visit(index) for every point within `radius` of `query`, without allocating.
@@ -85,9 +84,13 @@ class PointGrid {
         if (occupied_.empty()) return true;
         const Voxel offset = key - box_min_;
         if ((offset.array() < 0).any() || (offset.array() >= box_size_.array()).any()) return false;
-        const std::size_t bit = (std::size_t(offset.x()) * std::size_t(box_size_.y()) + std::size_t(offset.y())) * std::size_t(box_size_.z()) +
-                                std::size_t(offset.z());
+        const std::size_t bit = BitOf(offset);
         return (occupied_[bit >> 6] >> (bit & 63)) & 1u;
+    }
+    /// The bit of a cell at `offset` (>= 0, < box_size_) from the box's lowest corner.
+    std::size_t BitOf(const Voxel& offset) const {
+        return (std::size_t(offset.x()) * std::size_t(box_size_.y()) + std::size_t(offset.y())) * std::size_t(box_size_.z()) +
+               std::size_t(offset.z());
     }
 
     double cell_size_;
