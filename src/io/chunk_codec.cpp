@@ -1,9 +1,11 @@
 #include "io/chunk_codec.hpp"
 
+#include <bzlib.h>
 #include <lz4frame.h>
 #include <zstd.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 
 #include "io/ros_wire.hpp"
@@ -75,6 +77,37 @@ std::size_t Lz4(const std::uint8_t* input, std::size_t size, std::size_t declare
     return produced;
 }
 
+/// bzip2 (ROS 1 bags' bz2 chunks): one stream, as rosbag writes it.
+std::size_t Bz2(const std::uint8_t* input, std::size_t size, std::size_t declared, bool partial, std::vector<std::uint8_t>& out) {
+    bz_stream stream{};
+    if (BZ2_bzDecompressInit(&stream, 0, 0) != BZ_OK) throw WireError("bz2: no decompression context");
+    const std::unique_ptr<bz_stream, decltype(&BZ2_bzDecompressEnd)> end(&stream, &BZ2_bzDecompressEnd);
+    std::size_t produced = 0;
+    stream.next_in = const_cast<char*>(reinterpret_cast<const char*>(input));
+    stream.avail_in = unsigned(std::min<std::size_t>(size, std::numeric_limits<unsigned>::max()));
+    while (true) {
+        Reserve(out, produced, declared);
+        const std::size_t room = std::min(out.size(), declared) - produced;
+        stream.next_out = reinterpret_cast<char*>(out.data() + produced);
+        stream.avail_out = unsigned(std::min<std::size_t>(room, std::numeric_limits<unsigned>::max()));
+        const unsigned before_in = stream.avail_in, before_out = stream.avail_out;
+        const int status = BZ2_bzDecompress(&stream);
+        produced += before_out - stream.avail_out;
+        if (status == BZ_STREAM_END) break;
+        if (status != BZ_OK) {
+            if (partial) return produced;
+            throw WireError("bz2: damaged data (bzip2 status " + std::to_string(status) + ")");
+        }
+        if (stream.avail_in == before_in && stream.avail_out == before_out) {
+            if (partial) break;
+            throw WireError(produced == declared ? "bz2 data decompresses to more than the declared " + std::to_string(declared) + " bytes"
+                                                 : "bz2 stream ends early: " + std::to_string(produced) + " of " +
+                                                       std::to_string(declared) + " bytes");
+        }
+    }
+    return produced;
+}
+
 }  // namespace
 
 std::size_t Decompress(const std::string& compression, const std::uint8_t* input, std::size_t size,
@@ -84,8 +117,10 @@ std::size_t Decompress(const std::string& compression, const std::uint8_t* input
         produced = Zstd(input, size, declared, partial, out);
     } else if (compression == "lz4") {
         produced = Lz4(input, size, declared, partial, out);
+    } else if (compression == "bz2") {
+        produced = Bz2(input, size, declared, partial, out);
     } else {
-        throw WireError("compression '" + compression + "' is not supported (zstd, lz4 or none)");
+        throw WireError("compression '" + compression + "' is not supported (zstd, lz4, bz2 or none)");
     }
     if (!partial && produced != declared) {
         throw WireError(compression + " data decompresses to " + std::to_string(produced) + " bytes, the chunk declares " +

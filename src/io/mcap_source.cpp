@@ -166,6 +166,9 @@ class McapSource final : public BagSource {
             Damaged(record, "chunk declares an uncompressed size of " + std::to_string(declared) + " bytes (more than " +
                                 std::to_string(kMaxChunkBytes) + ")");
         }
+        if (!compression.empty() && compression != "zstd" && compression != "lz4") {
+            Damaged(record, "chunk compression '" + compression + "' is not one of MCAP's (zstd, lz4 or none)");
+        }
         const std::size_t have = std::min<std::uint64_t>(records, available - header);
         bool keep = false;
         try {

@@ -4,14 +4,13 @@
 #include "io/bag_source.hpp"
 
 #include "core/error.hpp"
+#include "io/ros1_container.hpp"
 
 #ifdef REVISIT_HAVE_ROSBAG
 #include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
-#include <cstdio>
-#include <cstring>
 #include <map>
 #include <optional>
 #endif
@@ -21,70 +20,10 @@ namespace revisit {
 #ifdef REVISIT_HAVE_ROSBAG
 namespace {
 
-constexpr std::uint64_t kMaxChunkBytes = 1ull << 30;  ///< [bytes] a chunk declaring more is damaged
-
-/// rosbag_storage allocates what a record's length fields say before it reads the bytes (a 4 KB file
-/// can ask for 4 GiB): every top-level record's header and data lengths, and each chunk's
-/// uncompressed size, are checked against the file first. Records: uint32 header length, header
-/// fields (uint32 length + "name=value"), uint32 data length, data.
-void CheckRecordLengths(const std::filesystem::path& file) {
-    std::unique_ptr<std::FILE, decltype(&std::fclose)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-    if (!f) throw DatasetError(file, "cannot open");
-    std::fseek(f.get(), 0, SEEK_END);
-    const std::uint64_t size = std::uint64_t(ftello(f.get()));
-    const char kVersion[] = "#ROSBAG V2.0\n";
-    char version[sizeof kVersion - 1];
-    std::fseek(f.get(), 0, SEEK_SET);
-    if (std::fread(version, 1, sizeof version, f.get()) != sizeof version || std::memcmp(version, kVersion, sizeof version) != 0) {
-        throw DatasetError(file, "not a ROS 1 bag of format 2.0 (no '#ROSBAG V2.0' line at byte 0)");
-    }
-    std::vector<char> header;
-    for (std::uint64_t at = sizeof version; at < size;) {
-        std::uint32_t lengths[2] = {0, 0};
-        const auto read_length = [&](std::uint32_t& length) {
-            return std::fread(&length, 4, 1, f.get()) == 1;
-        };
-        if (!read_length(lengths[0]) || lengths[0] > size - at - 4) {
-            throw DatasetError(file, "damaged ROS 1 bag: record header at byte offset " + std::to_string(at) + " runs past the end");
-        }
-        header.resize(lengths[0]);
-        if (std::fread(header.data(), 1, header.size(), f.get()) != header.size() || !read_length(lengths[1]) ||
-            lengths[1] > size - at - 8 - lengths[0]) {
-            throw DatasetError(file, "damaged ROS 1 bag: record data at byte offset " + std::to_string(at) + " runs past the end");
-        }
-        // A chunk's "size" field: what rosbag allocates to decompress it.
-        // Every field must lie inside its header: rosbag's ros::Header::parse copies what a field's
-        // length says without checking it (the fuzzer's heap overflow).
-        for (std::size_t p = 0; p < header.size();) {
-            std::uint32_t field = 0;
-            if (header.size() - p < 4) {
-                throw DatasetError(file, "damaged ROS 1 bag: record header at byte offset " + std::to_string(at) +
-                                             " ends inside a field length");
-            }
-            std::memcpy(&field, header.data() + p, 4);
-            if (field > header.size() - p - 4) {
-                throw DatasetError(file, "damaged ROS 1 bag: a header field at byte offset " + std::to_string(at + 4 + p) +
-                                             " runs past its record header");
-            }
-            if (field == 9 && std::memcmp(header.data() + p + 4, "size=", 5) == 0) {
-                std::uint32_t declared = 0;
-                std::memcpy(&declared, header.data() + p + 9, 4);
-                if (declared > kMaxChunkBytes) {
-                    throw DatasetError(file, "damaged ROS 1 bag: chunk at byte offset " + std::to_string(at) + " declares " +
-                                                 std::to_string(declared) + " uncompressed bytes");
-                }
-            }
-            p += 4 + field;
-        }
-        at += 8 + std::uint64_t(lengths[0]) + lengths[1];
-        if (fseeko(f.get(), off_t(at), SEEK_SET) != 0) break;
-    }
-}
-
 class Ros1Source final : public BagSource {
   public:
     explicit Ros1Source(const std::filesystem::path& file) : file_(file) {
-        CheckRecordLengths(file);
+        CheckRos1Container(file);
         Guard([&] {
             bag_.open(file.string(), rosbag::bagmode::Read);
             rosbag::View all(bag_);
