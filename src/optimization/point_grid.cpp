@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_set>
+
+#include <tsl/robin_set.h>
 
 #include "core/error.hpp"
 
@@ -16,14 +17,16 @@ void RequirePositive(double value, const char* name) {
 
 double VoxelOverlap(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, double voxel_size) {
     RequirePositive(voxel_size, "voxel_size");
-    std::unordered_set<Eigen::Vector3i, VoxelHash> voxels_a;
+    tsl::robin_set<Voxel, VoxelHash> voxels_a;
+    voxels_a.reserve(a.size() / 4);
     for (const auto& point : a) voxels_a.insert(VoxelOf(point, voxel_size));
-    std::unordered_set<Eigen::Vector3i, VoxelHash> voxels_b;
+    tsl::robin_set<Voxel, VoxelHash> voxels_b;
+    voxels_b.reserve(b.size() / 4);
     for (const auto& point : b) voxels_b.insert(VoxelOf(point, voxel_size));
     if (voxels_a.empty() || voxels_b.empty()) return 0.0;
     const auto& smaller = voxels_a.size() <= voxels_b.size() ? voxels_a : voxels_b;
     const auto& larger = voxels_a.size() <= voxels_b.size() ? voxels_b : voxels_a;
-    const auto common = std::count_if(smaller.begin(), smaller.end(), [&](const Eigen::Vector3i& key) {
+    const auto common = std::count_if(smaller.begin(), smaller.end(), [&](const Voxel& key) {
         return larger.count(key) > 0;
     });
     return static_cast<double>(common) / static_cast<double>(smaller.size());
@@ -62,9 +65,21 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell_siz
             box_size_ = (high - low).array() + 1;
             occupied_.assign(std::size_t(size.prod()) / 64 + 1, 0);
             for (const Voxel& key : cell_keys_) {
-                const std::size_t bit = BitOf(key - box_min_);
+                const std::size_t bit = BitOf(key - box_min_, box_size_);
                 occupied_[bit >> 6] |= std::uint64_t(1) << (bit & 63);
             }
+            // The same box grown by a cell each way, a bit set where any of the 27 cells around is
+            // occupied: a query whose own cell has none answers -1 from one bit (reach 1).
+            near_size_ = box_size_.array() + 2;
+            near_.assign(std::size_t(near_size_.cast<double>().prod()) / 64 + 1, 0);
+            for (const Voxel& key : cell_keys_)
+                for (int dx = 0; dx <= 2; ++dx)
+                    for (int dy = 0; dy <= 2; ++dy) {
+                        // Three cells along z are three consecutive bits (the word after gets the spill).
+                        const std::size_t bit = BitOf(key - box_min_ + Voxel(dx, dy, 0), near_size_);
+                        near_[bit >> 6] |= std::uint64_t(7) << (bit & 63);
+                        if ((bit & 63) > 61) near_[(bit >> 6) + 1] |= std::uint64_t(7) >> (64 - (bit & 63));
+                    }
         }
     }
     sorted_points_.resize(points.size());
@@ -107,6 +122,12 @@ int PointGrid::FindNearest(const Eigen::Vector3d& query, double max_distance) co
             }
         }
     };
+    if (reach == 1 && !near_.empty()) {
+        const Voxel offset = center - box_min_ + Voxel::Ones();
+        if ((offset.array() < 0).any() || (offset.array() >= near_size_.array()).any()) return -1;
+        const std::size_t bit = BitOf(offset, near_size_);
+        if (!((near_[bit >> 6] >> (bit & 63)) & 1u)) return -1;
+    }
     const int own_rank = (reach * side + reach) * side + reach;
     visit(center, own_rank);
     const auto gap = [&](int key, int offset, double coordinate) {

@@ -84,19 +84,20 @@ class PointGrid {
         if (occupied_.empty()) return true;
         const Voxel offset = key - box_min_;
         if ((offset.array() < 0).any() || (offset.array() >= box_size_.array()).any()) return false;
-        const std::size_t bit = BitOf(offset);
+        const std::size_t bit = BitOf(offset, box_size_);
         return (occupied_[bit >> 6] >> (bit & 63)) & 1u;
     }
-    /// The bit of a cell at `offset` (>= 0, < box_size_) from the box's lowest corner.
-    std::size_t BitOf(const Voxel& offset) const {
-        return (std::size_t(offset.x()) * std::size_t(box_size_.y()) + std::size_t(offset.y())) * std::size_t(box_size_.z()) +
-               std::size_t(offset.z());
+    /// The bit of a cell at `offset` (>= 0, < size) from the lowest corner of a box of `size` cells.
+    static std::size_t BitOf(const Voxel& offset, const Voxel& size) {
+        return (std::size_t(offset.x()) * std::size_t(size.y()) + std::size_t(offset.y())) * std::size_t(size.z()) + std::size_t(offset.z());
     }
 
     double cell_size_;
     Voxel box_min_ = Voxel::Zero();
     Voxel box_size_ = Voxel::Zero();
     std::vector<std::uint64_t> occupied_;  ///< empty when the box is too large: every cell is looked up
+    Voxel near_size_ = Voxel::Zero();      ///< the box grown by one cell each way
+    std::vector<std::uint64_t> near_;      ///< bit: an occupied cell among the 27 around (with occupied_)
     std::vector<Eigen::Vector3d> sorted_points_;
     std::vector<int> index_;
     std::vector<std::size_t> offsets_;  ///< num_cells() + 1

@@ -374,5 +374,34 @@ TEST(PointGrid, FindsWhatAVisitOfEveryNeighbourCellFinds) {
     }
 }
 
+TEST(PointGrid, SparsePointsAnswerLikeBruteForceAroundAndBeyondTheirBox) {
+    // Few points far apart: most queries have no occupied cell around them (answered from the bits
+    // of the cells near an occupied one), others lie just beside a point in any of the 26 directions
+    // or outside the points' box.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> uniform(-20.0, 20.0), nearby(-1.2, 1.2);
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < 40; ++i) points.emplace_back(uniform(rng), uniform(rng), 0.25 * uniform(rng));
+    for (const double cell : {0.9, 1.0}) {
+        const PointGrid grid(points, cell);
+        int found = 0, empty = 0;
+        for (int q = 0; q < 20000; ++q) {
+            Eigen::Vector3d query = q % 2 ? Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng))
+                                          : Eigen::Vector3d(points[std::size_t(q / 2) % points.size()] +
+                                                            Eigen::Vector3d(nearby(rng), nearby(rng), nearby(rng)));
+            int expected = -1;
+            double best = cell * cell;
+            for (int i = 0; i < int(points.size()); ++i) {
+                const double squared = (points[std::size_t(i)] - query).squaredNorm();
+                if (squared <= best) best = squared, expected = i;  // no ties among random points
+            }
+            ASSERT_EQ(grid.FindNearest(query, cell), expected) << "cell " << cell << " query " << query.transpose();
+            (expected >= 0 ? found : empty) += 1;
+        }
+        EXPECT_GT(found, 1000);
+        EXPECT_GT(empty, 2000);
+    }
+}
+
 }  // namespace
 }  // namespace revisit
