@@ -62,8 +62,9 @@ class PointGrid {
         for (int dx = -reach; dx <= reach; ++dx) {
             for (int dy = -reach; dy <= reach; ++dy) {
                 for (int dz = -reach; dz <= reach; ++dz) {
-                    if (!MayBeOccupied(center + Voxel(dx, dy, dz))) continue;
-                    const auto cell = cells_.find(center + Voxel(dx, dy, dz));
+                    const Voxel key = center + Voxel(dx, dy, dz);
+                    if (!MayBeOccupied(key)) continue;
+                    const auto cell = cells_.find(key);
                     if (cell != cells_.end()) visit(cell->second);
                 }
             }

@@ -270,6 +270,19 @@ RefinementQuery::RefinementQuery(const std::vector<Eigen::Vector3d>& query_point
     planes_ = EstimatePlanes(points_, config, planar_ ? Eigen::Vector3d(up_.normalized()) : Eigen::Vector3d::Zero());
 }
 
+const PointGrid& RefinementQuery::PlaneGrid(double gate, std::optional<PointGrid>& built) const {
+    if (keep_grids_) {
+        for (const auto& [kept_gate, grid] : grids_)
+            if (kept_gate == gate) return *grid;
+    }
+    std::vector<Eigen::Vector3d> plane_points;
+    plane_points.reserve(planes_.size());
+    for (const auto& plane : planes_) plane_points.push_back(plane.point);
+    if (!keep_grids_) return built.emplace(plane_points, gate);
+    grids_.emplace_back(gate, std::make_unique<PointGrid>(plane_points, gate));
+    return *grids_.back().second;
+}
+
 bool RefinementQuery::MadeWith(const RefinementConfig& config) const {
     return config.voxel_size == voxel_size_ && config.normal_radius == normal_radius_ &&
            config.max_surface_variation == max_surface_variation_ && config.min_normal_neighbours == min_normal_neighbours_;
@@ -322,10 +335,13 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     std::vector<Plane> replanned;
     if (planar != query.planar())
         replanned = EstimatePlanes(query_down, config, planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero());
-    const std::vector<Plane>& planes = planar != query.planar() ? replanned : query.planes();
-    std::vector<Eigen::Vector3d> plane_points;
-    plane_points.reserve(planes.size());
-    for (const auto& plane : planes) plane_points.push_back(plane.point);
+    const bool own_planes = planar == query.planar();
+    const std::vector<Plane>& planes = own_planes ? query.planes() : replanned;
+    std::vector<Eigen::Vector3d> plane_points;  // replanned only: the query's own grids come from the query
+    if (!own_planes) {
+        plane_points.reserve(planes.size());
+        for (const auto& plane : planes) plane_points.push_back(plane.point);
+    }
     const Eigen::Isometry3d T_start = SearchVertical(source, query_down, T_query_ref_guess, up_in_query,
                                                      config.vertical_search, config.voxel_size);
     result.T_query_ref = T_start;
@@ -338,13 +354,19 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     // A grid with the gate as cell edge answers every query from 27 cells; rebuilt only while the gate
     // shrinks (the first `gate_decay_iterations`).
     std::optional<PointGrid> plane_grid;
+    const PointGrid* grid = nullptr;
     double grid_gate = 0.0;
     const auto grid_for = [&](double gate) -> const PointGrid& {
-        if (!plane_grid || gate != grid_gate) {
-            plane_grid.emplace(plane_points, gate);
+        if (!grid || gate != grid_gate) {
+            if (own_planes) {
+                grid = &query.PlaneGrid(gate, plane_grid);
+            } else {
+                plane_grid.emplace(plane_points, gate);
+                grid = &*plane_grid;
+            }
             grid_gate = gate;
         }
-        return *plane_grid;
+        return *grid;
     };
     std::vector<Correspondence> correspondences;
     for (int iteration = 0; iteration < config.max_iterations; ++iteration) {

@@ -4,8 +4,13 @@
 /// robust loss, accepted only when the voxel overlap after alignment is high enough.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "optimization/point_grid.hpp"
 
 namespace revisit {
 
@@ -99,6 +104,15 @@ class RefinementQuery {
     /// where the map lies at one height along either vertical: a 2D laser's).
     bool SamePlanesAs(const Eigen::Vector3d& up_in_query) const;
 
+    /// Keeps the grids of the planes built for each gate of the ICP's schedule for the next
+    /// registrations onto this query map (the proximity pass registers several references onto one;
+    /// a few grids of the planes stay alive while the query does). Registrations onto a query that
+    /// keeps its grids must not run concurrently.
+    void KeepPlaneGrids() { keep_grids_ = true; }
+    /// The grid of the planes' points with cell edge `gate`: built each call, or kept (KeepPlaneGrids).
+    /// `built` holds a grid not kept.
+    const PointGrid& PlaneGrid(double gate, std::optional<PointGrid>& built) const;
+
   private:
     std::vector<Eigen::Vector3d> points_;
     std::vector<Plane> planes_;
@@ -107,6 +121,8 @@ class RefinementQuery {
     double low_ = 0.0, high_ = 0.0;
     double voxel_size_, normal_radius_, max_surface_variation_;
     int min_normal_neighbours_;
+    bool keep_grids_ = false;
+    mutable std::vector<std::pair<double, std::unique_ptr<PointGrid>>> grids_;  ///< by gate, when kept
 };
 
 /// Registers the reference map onto the query map starting from `T_query_ref_guess`

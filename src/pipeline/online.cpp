@@ -296,7 +296,10 @@ std::size_t ClosurePipeline::AddProximityClosures(bool from_odometry) {
             query_points = store_->Get(pair.query);
             query_loaded = pair.query;
             prepared.reset();
-            if (!query_points.empty()) prepared.emplace(ToDouble(query_points), confirm, UpInMap(query_map));
+            if (!query_points.empty()) {
+                prepared.emplace(ToDouble(query_points), confirm, UpInMap(query_map));
+                prepared->KeepPlaneGrids();  // its next references reuse each gate's grid
+            }
         }
         if (from_odometry) odometry_overlay_.insert(closures_.size());
         Refine(record, query_points, query_map, confirm, from_odometry, prepared ? &*prepared : nullptr);

@@ -17,6 +17,11 @@ class SimulationReader final : public Reader {
   public:
     SimulationReader(const SimConfig& config, const std::string& name, const ReaderOptions& options)
         : config_(WrittenConfig(config)), plan_(PlanSimulation(config_)), caster_(plan_.world), sweeps_(config_, plan_) {
+        // The caster keeps its own prepared copy of the boxes, and nothing else reads the world's: on a
+        // long route they are tens of MB held beside the chain's growing memory until the last scan.
+        std::vector<OrientedBox>().swap(plan_.world.boxes);
+        plan_.trajectory.poses.shrink_to_fit();
+        plan_.trajectory.timestamps.shrink_to_fit();
         info_.format = "sim";
         info_.path = name;
         info_.num_scans = plan_.trajectory.size();
