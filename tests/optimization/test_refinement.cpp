@@ -234,6 +234,15 @@ TEST(RefineAlignment, APreparedQueryMapGivesTheSameResults) {
         EXPECT_EQ(plain.num_correspondences, reused.num_correspondences) << "case " << k;
         EXPECT_EQ(plain.accepted, reused.accepted) << "case " << k;
         EXPECT_EQ(plain.reason, reused.reason) << "case " << k;
+        // Keeping the grids of the planes: the second registration reads them, with the same results.
+        RefinementQuery kept(c.query, c.config);
+        kept.KeepPlaneGrids();
+        for (int pass = 0; pass < 2; ++pass) {
+            const RefinementResult again = RefineAlignment(c.ref, kept, c.guess, c.config);
+            EXPECT_TRUE(plain.T_query_ref.matrix() == again.T_query_ref.matrix()) << "case " << k << " pass " << pass;
+            EXPECT_EQ(plain.num_correspondences, again.num_correspondences) << "case " << k << " pass " << pass;
+            EXPECT_EQ(plain.overlap, again.overlap) << "case " << k << " pass " << pass;
+        }
     }
     EXPECT_TRUE(RefineAlignment(cases[0].ref, cases[0].query, cases[0].guess, cases[0].config).accepted);
     RefinementConfig other = cases[0].config;
