@@ -22,7 +22,7 @@
 #ifdef REVISIT_HAVE_ROSBAG
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
-#include <sensor_msgs/PointCloud2.h>
+#include "../support/ros1_cloud.hpp"
 #endif
 
 namespace {
@@ -92,16 +92,10 @@ void BagSeeds(const fs::path& out, const fs::path& tmp) {
             rosbag::Bag bag(file.string(), rosbag::bagmode::Write);
             bag.setCompression(compression);
             for (int i = 0; i < 2; ++i) {
-                sensor_msgs::PointCloud2 msg;
-                msg.header.stamp = ros::Time(10 + i, 0);
-                msg.header.frame_id = "lidar";
-                msg.height = 1, msg.width = 1, msg.point_step = 12, msg.row_step = 12;
-                for (const char* field : {"x", "y", "z"}) {
-                    sensor_msgs::PointField f;
-                    f.name = field, f.offset = 4 * std::uint32_t(msg.fields.size()), f.datatype = 7, f.count = 1;
-                    msg.fields.push_back(f);
-                }
-                msg.data.assign(12, std::uint8_t(i));
+                // The bytes of each point all i (x = y = z, as the seeds always had).
+                float value = 0.f;
+                std::memset(&value, i, 4);
+                const auto msg = test::Ros1Cloud(ros::Time(10 + i, 0), "lidar", {"x", "y", "z"}, {value, value, value});
                 bag.write("/points", msg.header.stamp, msg);
                 nav_msgs::Odometry odom;
                 odom.header = msg.header;

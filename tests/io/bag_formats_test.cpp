@@ -13,7 +13,8 @@
 
 #ifdef REVISIT_HAVE_ROSBAG
 #include <rosbag/bag.h>
-#include <sensor_msgs/PointCloud2.h>
+
+#include "ros1_cloud.hpp"
 #endif
 
 namespace revisit {
@@ -81,18 +82,8 @@ TEST(Ros1Bag, Lz4ChunksWrittenByRosbag) {
         rosbag::Bag bag(file.string(), rosbag::bagmode::Write);
         bag.setCompression(rosbag::compression::LZ4);
         for (int i = 0; i < 3; ++i) {
-            sensor_msgs::PointCloud2 cloud;
-            cloud.header.stamp = ros::Time(100 + i, 250);
-            cloud.header.frame_id = "velodyne";
-            cloud.height = 1, cloud.width = 2, cloud.point_step = 16, cloud.row_step = 32;
-            for (const char* name : {"x", "y", "z", "intensity"}) {
-                sensor_msgs::PointField field;
-                field.name = name, field.offset = 4 * std::uint32_t(cloud.fields.size()), field.datatype = 7, field.count = 1;
-                cloud.fields.push_back(field);
-            }
-            const float values[8] = {float(i), 1, 2, 9, 3, 4, 5, 8};
-            cloud.data.resize(32);
-            std::memcpy(cloud.data.data(), values, 32);
+            const auto cloud = test::Ros1Cloud(ros::Time(100 + i, 250), "velodyne", {"x", "y", "z", "intensity"},
+                                               {float(i), 1, 2, 9, 3, 4, 5, 8});
             bag.write("/velodyne_points", cloud.header.stamp, cloud);
         }
     }

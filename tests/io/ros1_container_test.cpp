@@ -13,7 +13,8 @@
 
 #ifdef REVISIT_HAVE_ROSBAG
 #include <rosbag/bag.h>
-#include <sensor_msgs/PointCloud2.h>
+
+#include "ros1_cloud.hpp"
 #endif
 
 namespace revisit {
@@ -26,18 +27,7 @@ std::string WriteBag(const std::filesystem::path& file, rosbag::CompressionType 
         rosbag::Bag bag(file.string(), rosbag::bagmode::Write);
         bag.setCompression(compression);
         for (int i = 0; i < 3; ++i) {
-            sensor_msgs::PointCloud2 cloud;
-            cloud.header.stamp = ros::Time(100 + i, 0);
-            cloud.header.frame_id = "velodyne";
-            cloud.height = 1, cloud.width = 1, cloud.point_step = 12, cloud.row_step = 12;
-            for (const char* name : {"x", "y", "z"}) {
-                sensor_msgs::PointField field;
-                field.name = name, field.offset = 4 * std::uint32_t(cloud.fields.size()), field.datatype = 7, field.count = 1;
-                cloud.fields.push_back(field);
-            }
-            const float xyz[3] = {float(i), 1, 2};
-            cloud.data.resize(12);
-            std::memcpy(cloud.data.data(), xyz, 12);
+            const auto cloud = test::Ros1Cloud(ros::Time(100 + i, 0), "velodyne", {"x", "y", "z"}, {float(i), 1, 2});
             bag.write("/velodyne_points", cloud.header.stamp, cloud);
         }
     }
