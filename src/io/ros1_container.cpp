@@ -103,6 +103,8 @@ class ContainerCheck {
             TopRecord record{at, OpOf(fields)};
             if (record.op == kBagHeader && at == kFirstRecord) {
                 bag_header_ = fields;
+                // A recording cut short ends inside a chunk: say what rebuilds it before the walk meets the cut.
+                if (Number<std::uint64_t>(fields, "index_pos") == std::uint64_t(0)) Unindexed();
             } else if (record.op == kChunk) {
                 CheckChunk(at, fields, data_at, data_len);
             } else if (record.op == kIndexData) {
@@ -127,6 +129,10 @@ class ContainerCheck {
   private:
     [[noreturn]] void Fail(std::uint64_t at, const std::string& what) const {
         throw DatasetError(file_, "damaged ROS 1 bag at byte offset " + std::to_string(at) + ": " + what);
+    }
+
+    [[noreturn]] void Unindexed() const {
+        throw DatasetError(file_, "the ROS 1 bag has no index (was its recording cut short?); `rosbag reindex` rebuilds it");
     }
 
     void Read(void* out, std::size_t size, std::uint64_t at) {
@@ -228,9 +234,7 @@ class ContainerCheck {
         const std::uint64_t index_pos = Required<std::uint64_t>(kFirstRecord, bag_header_, "index_pos");
         const std::uint32_t conn_count = Required<std::uint32_t>(kFirstRecord, bag_header_, "conn_count");
         const std::uint32_t chunk_count = Required<std::uint32_t>(kFirstRecord, bag_header_, "chunk_count");
-        if (index_pos == 0) {
-            throw DatasetError(file_, "the ROS 1 bag has no index (was its recording cut short?); `rosbag reindex` rebuilds it");
-        }
+        if (index_pos == 0) Unindexed();
         const auto find = [&](std::uint64_t at) {
             return std::lower_bound(records_.begin(), records_.end(), at, [](const TopRecord& r, std::uint64_t v) { return r.at < v; });
         };

@@ -131,6 +131,8 @@ TEST(Ros1Container, DamagedChunksLengthsAndIndexPositionsAreNamed) {
     const std::size_t index_pos = unindexed.find("index_pos=");
     std::memset(&unindexed[index_pos + 10], 0, 8);
     expect(unindexed, "has no index (was its recording cut short?)");
+    // ... and cut inside its chunk, as a crashed `rosbag record` leaves it: the same advice, not the cut.
+    expect(unindexed.substr(0, chunk.data_at + chunk.data_len / 2), "`rosbag reindex` rebuilds it");
     // A bz2 chunk whose compressed bytes are damaged: bzip2's CRC, not rosbag's decoder, finds it.
     const std::string bz2 = WriteBag(file, rosbag::compression::BZ2);
     const Record bz2_chunk = First(Records(bz2), 5);
