@@ -103,8 +103,12 @@ class ContainerCheck {
             TopRecord record{at, OpOf(fields)};
             if (record.op == kBagHeader && at == kFirstRecord) {
                 bag_header_ = fields;
-                // A recording cut short ends inside a chunk: say what rebuilds it before the walk meets the cut.
+                // Said before the walk meets what they cause: a recording cut short ends inside a chunk, and an
+                // encrypted bag's chunks do not decompress.
                 if (Number<std::uint64_t>(fields, "index_pos") == std::uint64_t(0)) Unindexed();
+                if (fields.count("encryptor")) {
+                    throw DatasetError(file_, "encrypted ROS 1 bags are not read (encryptor " + fields.at("encryptor") + ")");
+                }
             } else if (record.op == kChunk) {
                 CheckChunk(at, fields, data_at, data_len);
             } else if (record.op == kIndexData) {
@@ -113,8 +117,9 @@ class ContainerCheck {
                 record.conn = Required<std::uint32_t>(at, fields, "conn");
                 data_.resize(data_len);
                 Read(data_.data(), data_len, data_at);
-                Fields connection;
-                if (const std::string wrong = SplitFields(data_.data(), data_len, connection); !wrong.empty()) {
+                // Its data is the connection's own header: rosbag parses it like one.
+                if (const std::string wrong = ForEachField(data_.data(), data_len, [](std::string_view, std::string_view) {});
+                    !wrong.empty()) {
                     Fail(at, "connection record: " + wrong);
                 }
             } else if (record.op == kChunkInfo) {
@@ -228,13 +233,9 @@ class ContainerCheck {
     /// many chunk infos, and seeks to each chunk: each position must be a record of the right kind.
     void CheckIndexSection() const {
         if (records_.empty() || records_.front().op != kBagHeader) Fail(kFirstRecord, "the first record is not a bag header");
-        if (bag_header_.count("encryptor")) {
-            throw DatasetError(file_, "encrypted ROS 1 bags are not read (encryptor " + bag_header_.at("encryptor") + ")");
-        }
         const std::uint64_t index_pos = Required<std::uint64_t>(kFirstRecord, bag_header_, "index_pos");
         const std::uint32_t conn_count = Required<std::uint32_t>(kFirstRecord, bag_header_, "conn_count");
         const std::uint32_t chunk_count = Required<std::uint32_t>(kFirstRecord, bag_header_, "chunk_count");
-        if (index_pos == 0) Unindexed();
         const auto find = [&](std::uint64_t at) {
             return std::lower_bound(records_.begin(), records_.end(), at, [](const TopRecord& r, std::uint64_t v) { return r.at < v; });
         };

@@ -270,15 +270,11 @@ RefinementQuery::RefinementQuery(const std::vector<Eigen::Vector3d>& query_point
     planes_ = EstimatePlanes(points_, config, planar_ ? Eigen::Vector3d(up_.normalized()) : Eigen::Vector3d::Zero());
 }
 
-const PointGrid& RefinementQuery::PlaneGrid(double gate, std::optional<PointGrid>& built) const {
-    if (keep_grids_) {
-        for (const auto& [kept_gate, grid] : grids_)
-            if (kept_gate == gate) return *grid;
-    }
-    std::vector<Eigen::Vector3d> plane_points;
-    plane_points.reserve(planes_.size());
-    for (const auto& plane : planes_) plane_points.push_back(plane.point);
+const PointGrid& RefinementQuery::PlaneGrid(double gate, const std::vector<Eigen::Vector3d>& plane_points,
+                                            std::optional<PointGrid>& built) const {
     if (!keep_grids_) return built.emplace(plane_points, gate);
+    for (const auto& [kept_gate, grid] : grids_)
+        if (kept_gate == gate) return *grid;
     grids_.emplace_back(gate, std::make_unique<PointGrid>(plane_points, gate));
     return *grids_.back().second;
 }
@@ -332,16 +328,14 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
         const auto [low, high] = HeightRange(source, up_in_query.normalized());
         planar = std::max(high, query.high()) - std::min(low, query.low()) < kOneHeight;
     }
-    std::vector<Plane> replanned;
-    if (planar != query.planar())
-        replanned = EstimatePlanes(query_down, config, planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero());
     const bool own_planes = planar == query.planar();
+    std::vector<Plane> replanned;
+    if (!own_planes)
+        replanned = EstimatePlanes(query_down, config, planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero());
     const std::vector<Plane>& planes = own_planes ? query.planes() : replanned;
-    std::vector<Eigen::Vector3d> plane_points;  // replanned only: the query's own grids come from the query
-    if (!own_planes) {
-        plane_points.reserve(planes.size());
-        for (const auto& plane : planes) plane_points.push_back(plane.point);
-    }
+    std::vector<Eigen::Vector3d> plane_points;
+    plane_points.reserve(planes.size());
+    for (const auto& plane : planes) plane_points.push_back(plane.point);
     const Eigen::Isometry3d T_start = SearchVertical(source, query_down, T_query_ref_guess, up_in_query,
                                                      config.vertical_search, config.voxel_size);
     result.T_query_ref = T_start;
@@ -358,12 +352,8 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     double grid_gate = 0.0;
     const auto grid_for = [&](double gate) -> const PointGrid& {
         if (!grid || gate != grid_gate) {
-            if (own_planes) {
-                grid = &query.PlaneGrid(gate, plane_grid);
-            } else {
-                plane_grid.emplace(plane_points, gate);
-                grid = &*plane_grid;
-            }
+            // Replanned planes are this registration's own: their grids are never the query's to keep.
+            grid = own_planes ? &query.PlaneGrid(gate, plane_points, plane_grid) : &plane_grid.emplace(plane_points, gate);
             grid_gate = gate;
         }
         return *grid;

@@ -133,6 +133,21 @@ TEST(Ros1Container, DamagedChunksLengthsAndIndexPositionsAreNamed) {
     expect(unindexed, "has no index (was its recording cut short?)");
     // ... and cut inside its chunk, as a crashed `rosbag record` leaves it: the same advice, not the cut.
     expect(unindexed.substr(0, chunk.data_at + chunk.data_len / 2), "`rosbag reindex` rebuilds it");
+    // An encrypted bag (a field rosbag's encryptor plugins add to the bag header; the header's padding
+    // shrinks by as much, so every offset stays): refused as such, before its chunks fail to decompress.
+    std::string encrypted = plain;
+    const std::string field = "encryptor=rosbag/AesCbcEncryptor";
+    const Record header = records.front();
+    std::uint32_t header_len = 0, padding = 0;
+    std::memcpy(&header_len, &encrypted[header.at], 4);
+    std::memcpy(&padding, &encrypted[header.at + 4 + header_len], 4);
+    const std::uint32_t field_len = std::uint32_t(field.size()), grown = header_len + 4 + field_len, shrunk = padding - 4 - field_len;
+    std::string with_field(reinterpret_cast<const char*>(&field_len), 4);
+    with_field += field;
+    encrypted.replace(header.at + 4 + header_len, 4 + 4 + field.size(), with_field + std::string(reinterpret_cast<const char*>(&shrunk), 4));
+    std::memcpy(&encrypted[header.at], &grown, 4);
+    ASSERT_EQ(encrypted.size(), plain.size());
+    expect(encrypted, "encrypted ROS 1 bags are not read (encryptor rosbag/AesCbcEncryptor)");
     // A bz2 chunk whose compressed bytes are damaged: bzip2's CRC, not rosbag's decoder, finds it.
     const std::string bz2 = WriteBag(file, rosbag::compression::BZ2);
     const Record bz2_chunk = First(Records(bz2), 5);
