@@ -78,6 +78,15 @@ std::pair<double, double> HeightRange(const std::vector<Eigen::Vector3d>& points
     }
     return {low, high};
 }
+/// The planes' points, in order: what their grids are built from (only when a grid is built; the
+/// proximity pass's query keeps its grids for many registrations).
+std::vector<Eigen::Vector3d> PointsOf(const std::vector<Plane>& planes) {
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(planes.size());
+    for (const auto& plane : planes) points.push_back(plane.point);
+    return points;
+}
+
 constexpr double kOneHeight = 1e-6;  ///< [m] spread along up below which points lie at one height
 
 /// Planes of the query map: PCA normal of each point's neighbourhood, kept only where the
@@ -270,12 +279,11 @@ RefinementQuery::RefinementQuery(const std::vector<Eigen::Vector3d>& query_point
     planes_ = EstimatePlanes(points_, config, planar_ ? Eigen::Vector3d(up_.normalized()) : Eigen::Vector3d::Zero());
 }
 
-const PointGrid& RefinementQuery::PlaneGrid(double gate, const std::vector<Eigen::Vector3d>& plane_points,
-                                            std::optional<PointGrid>& built) const {
-    if (!keep_grids_) return built.emplace(plane_points, gate);
+const PointGrid& RefinementQuery::PlaneGrid(double gate, std::optional<PointGrid>& built) const {
+    if (!keep_grids_) return built.emplace(PointsOf(planes_), gate);
     for (const auto& [kept_gate, grid] : grids_)
         if (kept_gate == gate) return *grid;
-    grids_.emplace_back(gate, std::make_unique<PointGrid>(plane_points, gate));
+    grids_.emplace_back(gate, std::make_unique<PointGrid>(PointsOf(planes_), gate));
     return *grids_.back().second;
 }
 
@@ -333,9 +341,6 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     if (!own_planes)
         replanned = EstimatePlanes(query_down, config, planar ? Eigen::Vector3d(up_in_query.normalized()) : Eigen::Vector3d::Zero());
     const std::vector<Plane>& planes = own_planes ? query.planes() : replanned;
-    std::vector<Eigen::Vector3d> plane_points;
-    plane_points.reserve(planes.size());
-    for (const auto& plane : planes) plane_points.push_back(plane.point);
     const Eigen::Isometry3d T_start = SearchVertical(source, query_down, T_query_ref_guess, up_in_query,
                                                      config.vertical_search, config.voxel_size);
     result.T_query_ref = T_start;
@@ -353,7 +358,7 @@ RefinementResult RefineAlignment(const std::vector<Eigen::Vector3d>& ref_points_
     const auto grid_for = [&](double gate) -> const PointGrid& {
         if (!grid || gate != grid_gate) {
             // Replanned planes are this registration's own: their grids are never the query's to keep.
-            grid = own_planes ? &query.PlaneGrid(gate, plane_points, plane_grid) : &plane_grid.emplace(plane_points, gate);
+            grid = own_planes ? &query.PlaneGrid(gate, plane_grid) : &plane_grid.emplace(PointsOf(planes), gate);
             grid_gate = gate;
         }
         return *grid;

@@ -109,9 +109,9 @@ class RefinementQuery {
     /// a few grids of the planes stay alive while the query does). Registrations onto a query that
     /// keeps its grids must not run concurrently.
     void KeepPlaneGrids() { keep_grids_ = true; }
-    /// The grid of `plane_points` (the planes' points, in order) with cell edge `gate`: built each call
-    /// into `built`, or built once and kept (KeepPlaneGrids).
-    const PointGrid& PlaneGrid(double gate, const std::vector<Eigen::Vector3d>& plane_points, std::optional<PointGrid>& built) const;
+    /// The grid of the planes' points (in order) with cell edge `gate`: built each call into `built`,
+    /// or built once and kept (KeepPlaneGrids).
+    const PointGrid& PlaneGrid(double gate, std::optional<PointGrid>& built) const;
 
   private:
     std::vector<Eigen::Vector3d> points_;
