@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <iostream>
+#include <random>
+#include <set>
 #include <stdexcept>
 
 #include "core/se3.hpp"
@@ -216,6 +219,42 @@ TEST(GlobalMapBuilder, PastItsCapTheVoxelDoublesAsIfBuiltAtThatVoxel) {
     const auto direct = build(2.0, 0);
     EXPECT_EQ(capped.Points(), direct.Points());  // the same points, in the same order
     EXPECT_DOUBLE_EQ(build(0.5, 8000).voxel_size(), 0.5);  // a map that fits keeps its voxel
+}
+
+TEST(GlobalMapBuilder, KeepsTheFirstPointOfEachVoxelInOrderWhereverThePointsLie) {
+    // Points anywhere (also on voxel borders), from three nodes turned and shifted, and maps of
+    // different sizes: the capped map is the first written point of each voxel at its final voxel,
+    // in the order the points came, as a plain ordered map of voxels says.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> coordinate(-12.0f, 12.0f);
+    std::vector<std::vector<Eigen::Vector3f>> maps(3);
+    for (std::size_t m = 0; m < maps.size(); ++m)
+        for (std::size_t i = 0; i < 3000 * (m + 1); ++i) maps[m].emplace_back(coordinate(random), coordinate(random), 0.2f * coordinate(random));
+    const Poses nodes = {Eigen::Isometry3d::Identity(), PoseFromXYZRPY(3.0, -1.5, 0.2, 0.0, 0.0, 0.9),
+                         PoseFromXYZRPY(-4.0, 6.0, 0.0, 0.1, 0.0, -2.0)};
+    GlobalMapBuilder capped(0.25, 2500);
+    for (std::size_t m = 0; m < maps.size(); ++m) capped.Add(maps[m], nodes[m]);
+    EXPECT_GT(capped.voxel_size(), 0.25);
+    EXPECT_LE(capped.size(), 2500u);
+
+    std::vector<Eigen::Vector3f> expected;
+    std::set<std::array<int, 3>> seen;
+    for (std::size_t m = 0; m < maps.size(); ++m) {
+        for (const auto& p : maps[m]) {
+            const Eigen::Vector3f written = (nodes[m] * p.cast<double>()).cast<float>();
+            const Voxel v = VoxelOf(written.cast<double>(), capped.voxel_size());
+            if (seen.insert({v.x(), v.y(), v.z()}).second) expected.push_back(written);
+        }
+    }
+    EXPECT_EQ(capped.Points(), expected);
+    // Half the final voxel would not have fitted.
+    std::set<std::array<int, 3>> finer;
+    for (std::size_t m = 0; m < maps.size(); ++m)
+        for (const auto& p : maps[m]) {
+            const Voxel v = VoxelOf((nodes[m] * p.cast<double>()).cast<float>().cast<double>(), 0.5 * capped.voxel_size());
+            finer.insert({v.x(), v.y(), v.z()});
+        }
+    EXPECT_GT(finer.size(), 2500u);
 }
 
 }  // namespace
