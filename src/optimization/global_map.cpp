@@ -36,8 +36,11 @@ GlobalMapBuilder::GlobalMapBuilder(double voxel_size, std::size_t max_points) : 
 void GlobalMapBuilder::ReserveForCap() {
     // Reserved, not touched: no copies while they grow (the old and new arrays side by side), and no
     // pages until used. A map's points can pass the cap before they are thinned: a margin for those.
+    // A cap set far beyond any map (to switch it off) reserves no more than this: its address space
+    // could exceed the machine's, and the arrays grow as usual past it.
+    constexpr std::size_t kMostReserved = std::size_t(1) << 23;  // [points] 100 MB of address space per array
     if (max_points_ == 0) return;
-    const std::size_t capacity = max_points_ + max_points_ / 4;
+    const std::size_t capacity = std::min(max_points_ + max_points_ / 4, kMostReserved);
     points_.reserve(capacity);
     occupied_.reserve(capacity);
 }
