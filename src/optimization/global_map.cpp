@@ -45,12 +45,12 @@ void GlobalMapBuilder::ReserveForCap() {
     occupied_.reserve(capacity);
 }
 
-void GlobalMapBuilder::AddBatch() {
+void GlobalMapBuilder::AddBatch(const std::vector<Eigen::Vector3f>& points_in_world, const std::vector<Voxel>& voxels) {
     // The first point of the map to reach a voxel no earlier map holds keeps it, in the map's order.
     batch_seen_.clear();
     std::vector<std::pair<Voxel, std::uint32_t>> fresh;  // (voxel, point), ascending by voxel
-    for (std::uint32_t i = 0; i < batch_voxels_.size(); ++i)
-        if (batch_seen_.insert(batch_voxels_[i]).second) fresh.emplace_back(batch_voxels_[i], i);
+    for (std::uint32_t i = 0; i < voxels.size(); ++i)
+        if (batch_seen_.insert(voxels[i]).second) fresh.emplace_back(voxels[i], i);
     std::sort(fresh.begin(), fresh.end(), [](const auto& a, const auto& b) { return VoxelLess(a.first, b.first); });
     auto from = occupied_.begin();  // the queries ascend: each search starts where the last one ended
     std::size_t kept = 0;
@@ -63,7 +63,7 @@ void GlobalMapBuilder::AddBatch() {
     for (const auto& entry : fresh) occupied_.push_back(entry.first);
     std::inplace_merge(occupied_.begin(), occupied_.begin() + static_cast<std::ptrdiff_t>(old_size), occupied_.end(), VoxelLess);
     std::sort(fresh.begin(), fresh.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-    for (const auto& entry : fresh) points_.push_back(batch_points_[entry.second]);
+    for (const auto& entry : fresh) points_.push_back(points_in_world[entry.second]);
     // Past the cap mid-map or at its end, the same points remain: a coarser voxel's first point is the
     // first point of one of the finer voxels in it, kept so far.
     while (max_points_ > 0 && points_.size() > max_points_) Coarsen();

@@ -22,16 +22,16 @@ class GlobalMapBuilder {
     /// The first point to reach a voxel keeps it (the voxel of the point in single precision, as written).
     template <typename Point>
     void Add(const std::vector<Point>& points_in_node, const Eigen::Isometry3d& T_world_node) {
-        batch_points_.clear();
-        batch_voxels_.clear();
-        batch_points_.reserve(points_in_node.size());
-        batch_voxels_.reserve(points_in_node.size());
+        std::vector<Eigen::Vector3f> points_in_world;
+        std::vector<Voxel> voxels;
+        points_in_world.reserve(points_in_node.size());
+        voxels.reserve(points_in_node.size());
         for (const auto& point : points_in_node) {
             // The voxel of the point as written: the one a coarser voxel's thinning sees again.
-            batch_points_.push_back((T_world_node * point.template cast<double>()).template cast<float>());
-            batch_voxels_.push_back(VoxelOf(batch_points_.back().template cast<double>(), voxel_size_));
+            points_in_world.push_back((T_world_node * point.template cast<double>()).template cast<float>());
+            voxels.push_back(VoxelOf(points_in_world.back().template cast<double>(), voxel_size_));
         }
-        AddBatch();
+        AddBatch(points_in_world, voxels);
     }
 
     /// The map's points in the world frame, in insertion order (in single precision, as written).
@@ -41,7 +41,8 @@ class GlobalMapBuilder {
 
   private:
     void ReserveForCap();
-    void AddBatch();
+    /// Adds one map's points (world frame) with their voxels at the current voxel size.
+    void AddBatch(const std::vector<Eigen::Vector3f>& points_in_world, const std::vector<Voxel>& voxels);
     void Coarsen();
 
     double voxel_size_;
@@ -51,9 +52,10 @@ class GlobalMapBuilder {
     /// voxels: up to 96 MB, against 24 MB here and one map's voxels merged in).
     std::vector<Voxel> occupied_;
     std::vector<Eigen::Vector3f> points_;
-    std::vector<Eigen::Vector3f> batch_points_;  ///< the map being added, in the world frame
-    std::vector<Voxel> batch_voxels_;            ///< their voxels
-    tsl::robin_set<Voxel, MixedVoxelHash> batch_seen_;  ///< the voxels the map being added reached so far
+    /// Scratch of AddBatch, kept for its buckets: the voxels the map being added reached so far. A
+    /// map's own first points come from a hash set (sorting every point of each map cost twice the
+    /// time); only the thinning, over up to the cap's points, sorts to stay small.
+    tsl::robin_set<Voxel, MixedVoxelHash> batch_seen_;
 };
 
 }  // namespace revisit
