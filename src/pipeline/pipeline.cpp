@@ -216,7 +216,19 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         StagedScan staged;
         OdometryStages::Item& item = staged.item;
         std::optional<Scan> scan;
-        while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {}
+        // No format seeks: the scans before --from are read (a simulated one ray-cast) and dropped. On a
+        // long recording that takes minutes, so it has its own progress, and the run's rate starts after it.
+        std::optional<Progress> skipping;
+        std::size_t skipped = 0;
+        while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {
+            if (!skipping) skipping.emplace(log, Progress::DetectMode(options.quiet), options.from, "scans skipped");
+            skipped = scan->index + 1;
+            skipping->Update(skipped);
+        }
+        if (skipping) {
+            skipping->Finish(skipped);
+            progress.Restart();
+        }
         time(read_timer, read_start);
         if (!scan) read_to_end = !InterruptRequested();
         if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {

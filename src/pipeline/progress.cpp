@@ -71,4 +71,6 @@ void Progress::Finish(std::size_t done, const std::string& extra) {
     out_ << Line(done, extra, elapsed) << "  in " << FormatDuration(elapsed) << '\n' << std::flush;
 }
 
+void Progress::Restart() { start_ = last_print_ = std::chrono::steady_clock::now(); }
+
 }  // namespace revisit

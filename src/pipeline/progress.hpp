@@ -25,6 +25,9 @@ class Progress {
     void Message(const std::string& line);
     /// Clears the bar (terminal) and prints the final rate.
     void Finish(std::size_t done, const std::string& extra = "");
+    /// Starts the clock again: the rate and the ETA count from now (after work that was not the items',
+    /// such as the scans read and dropped before --from).
+    void Restart();
 
     /// "1:02:03" or "2:03".
     static std::string FormatDuration(double seconds);
