@@ -9,6 +9,7 @@
 #include "io/reader.hpp"
 #include "pipeline/covered_run.hpp"
 #include "pipeline/progress.hpp"
+#include "pipeline/read_from.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
@@ -85,9 +86,8 @@ DatasetPass ReadDatasetPass(const Poses& reference, const std::vector<std::size_
     Progress progress(log, Progress::DetectMode(options.quiet), run_scans, "scans (evaluation)");
     std::size_t position = 0, evaluated = 0;  // in the run; in `reference`
     while (position < run_scans) {
-        auto scan = reader->Next();
+        auto scan = NextFrom(*reader, options.from, progress, Progress::DetectMode(options.quiet), log);
         if (!scan) break;
-        if (scan->index < options.from) continue;
         const bool is_evaluated = evaluated < reference.size() && RunScan(scans, evaluated) == position;
         if (is_evaluated && sets) {
             const Eigen::Isometry3d& T_world_sensor = reference[evaluated];

@@ -31,6 +31,7 @@
 #include "pipeline/interrupt.hpp"
 #include "pipeline/online.hpp"
 #include "pipeline/progress.hpp"
+#include "pipeline/read_from.hpp"
 #include "core/input_file.hpp"
 #include "runfolder/json_file.hpp"
 #include "runfolder/run_files.hpp"
@@ -215,20 +216,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         const auto read_start = Clock::now();  // the wait for the read-ahead thread's scan
         StagedScan staged;
         OdometryStages::Item& item = staged.item;
-        std::optional<Scan> scan;
-        // No format seeks: the scans before --from are read (a simulated one ray-cast) and dropped. On a
-        // long recording that takes minutes, so it has its own progress, and the run's rate starts after it.
-        std::optional<Progress> skipping;
-        std::size_t skipped = 0;
-        while ((scan = reader->Next()) && scan->index < options.from && !InterruptRequested()) {
-            if (!skipping) skipping.emplace(log, Progress::DetectMode(options.quiet), options.from, "scans skipped");
-            skipped = scan->index + 1;
-            skipping->Update(skipped);
-        }
-        if (skipping) {
-            skipping->Finish(skipped);
-            progress.Restart();
-        }
+        std::optional<Scan> scan =
+            NextFrom(*reader, options.from, progress, Progress::DetectMode(options.quiet), log, [] { return InterruptRequested(); });
         time(read_timer, read_start);
         if (!scan) read_to_end = !InterruptRequested();
         if (!scan || InterruptRequested() || (options.to && scan->index > *options.to)) {

@@ -94,6 +94,11 @@ TEST(CliRun, ScansBeforeFromAreSkippedWithTheirOwnProgress) {
     EXPECT_NE(run.output.find("10/10 scans skipped (100%)"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("11/11 scans (100%)"), std::string::npos) << run.output;
     EXPECT_EQ(ReadRunState(RunFolder::Open(dir / "run")).odometry.size(), 11u);
+    // `eval` reads the run's dataset again, from the same scan.
+    const auto eval = RunCli("eval " + Quote((dir / "run").string()));
+    ASSERT_EQ(eval.exit_code, 0) << eval.output;
+    EXPECT_NE(eval.output.find("10/10 scans skipped (100%)"), std::string::npos) << eval.output;
+    EXPECT_NE(eval.output.find("11/11 scans (evaluation) (100%)"), std::string::npos) << eval.output;
 }
 
 TEST(CliRun, InterruptedRunLeavesAValidPartialFolder) {
