@@ -85,7 +85,7 @@ void AddRunCommand(CLI::App& root, Action& action) {
     cmd->add_option("--out", o->out, "run folder (default: reports/<dataset>-<time>, with a 'latest' link)");
     cmd->add_option("--poses", o->poses, "odometry (compute), dataset (use its reference poses), prior (use its odometry prior, e.g. wheel odometry, as it is) or a KITTI/TUM FILE")->capture_default_str();
     cmd->add_option("--gt", o->run.gt_file, "ground-truth trajectory (KITTI, TUM or sec,nsec,x,y,z,qx,qy,qz,qw CSV) for evaluation");
-    cmd->add_option("--from", o->from, "first scan index to use (the scans before it are read and dropped, with their own progress: no format seeks)");
+    cmd->add_option("--from", o->from, "first scan index to use (a folder or sim: starts there directly; a bag or log file reads and drops the scans before it, with their own progress)");
     cmd->add_option("--to", o->to, "last scan index to use (inclusive)")->each([o](const std::string&) { o->has_to = true; });
     cmd->add_option("--against", o->against,
                     "an earlier run folder (repeatable): also find closures with its session and write the joint "

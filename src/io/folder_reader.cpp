@@ -84,6 +84,15 @@ class FolderReader final : public Reader {
         return scan;
     }
 
+    bool SkipTo(std::size_t index) override {
+        const std::size_t to = std::min(index, files_.size());
+        if (to > next_) {
+            stats_.scans += to - next_;
+            next_ = to;
+        }
+        return true;
+    }
+
     const DatasetInfo& Info() const override { return info_; }
 
   private:

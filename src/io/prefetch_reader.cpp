@@ -43,6 +43,13 @@ void PrefetchReader::Produce() {
     }
 }
 
+bool PrefetchReader::SkipTo(std::size_t index) {
+    if (thread_.joinable() || ended_) return false;
+    if (!inner_->SkipTo(index)) return false;
+    stats_ = inner_->Stats();
+    return true;
+}
+
 std::optional<Scan> PrefetchReader::Next() {
     if (ended_) return std::nullopt;
     if (!thread_.joinable()) thread_ = std::thread([this] { Produce(); });

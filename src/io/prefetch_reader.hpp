@@ -24,6 +24,8 @@ class PrefetchReader : public Reader {
     PrefetchReader& operator=(const PrefetchReader&) = delete;
 
     std::optional<Scan> Next() override;
+    /// The inner reader's, before the first Next() only (then the read-ahead thread owns it): false after.
+    bool SkipTo(std::size_t index) override;
     const DatasetInfo& Info() const override { return info_; }
 
   private:

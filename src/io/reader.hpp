@@ -69,6 +69,14 @@ class Reader {
     virtual ~Reader() = default;
     /// The next scan, or nullopt at the end. Throws DatasetError on corrupt input.
     virtual std::optional<Scan> Next() = 0;
+    /// Where the format can go to a scan without reading the ones before it (a folder of scan files,
+    /// the simulator): makes the first scan whose index is at least `index` the next one and returns
+    /// true; the scans passed count in Stats().scans as read. A stream (a bag, a rawlog, a log file)
+    /// returns false and the caller reads and drops them (pipeline/read_from.hpp).
+    virtual bool SkipTo(std::size_t index) {
+        (void)index;
+        return false;
+    }
     virtual const DatasetInfo& Info() const = 0;
     const ReadStats& Stats() const { return stats_; }
 

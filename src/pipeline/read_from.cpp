@@ -6,6 +6,8 @@ namespace revisit {
 
 std::optional<Scan> NextFrom(Reader& reader, std::size_t first, Progress& progress, Progress::Mode mode, std::ostream& log,
                              const std::function<bool()>& stop) {
+    // A folder or the simulator goes there directly (idempotent: once past `first`, nothing moves).
+    if (first > 0 && reader.SkipTo(first)) return reader.Next();
     std::optional<Scan> scan;
     std::optional<Progress> skipping;
     std::size_t skipped = 0;

@@ -5,6 +5,7 @@
 #include "sim/presets.hpp"
 #include "sim/ray_caster.hpp"
 
+#include <algorithm>
 #include <exception>
 #include <string>
 
@@ -55,6 +56,16 @@ class SimulationReader final : public Reader {
         stats_.scans++;
         stats_.points += scan.points.size();
         return scan;
+    }
+
+    /// Each scan is ray-cast from its own pose and seed (PlanSweeps::Simulate): any scan can come first.
+    bool SkipTo(std::size_t index) override {
+        const std::size_t to = std::min(index, plan_.trajectory.size());
+        if (to > next_) {
+            stats_.scans += to - next_;
+            next_ = to;
+        }
+        return true;
     }
 
     const DatasetInfo& Info() const override { return info_; }

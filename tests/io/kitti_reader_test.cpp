@@ -102,6 +102,26 @@ TEST(KittiReader, StreamsScansInOrderWithTimesAndPoses) {
     EXPECT_FALSE(reader->Next());
 }
 
+TEST(KittiReader, SkipToGoesToAScanWithoutReadingTheOnesBefore) {
+    test::TempDir dir;
+    MakeKittiFolder(dir / "seq", 5);
+    // Scan 1's file is damaged: a reader that went through it would throw.
+    std::ofstream(dir / "seq" / "velodyne" / "000001.bin", std::ios::binary | std::ios::trunc) << "bad";
+    auto reader = OpenDataset(dir / "seq");
+    ASSERT_TRUE(reader->SkipTo(3));
+    EXPECT_EQ(reader->Stats().scans, 3u);
+    const auto scan = reader->Next();
+    ASSERT_TRUE(scan);
+    EXPECT_EQ(scan->index, 3u);
+    EXPECT_EQ(scan->points.size(), 13u);
+    ASSERT_TRUE(scan->T_world_sensor);
+    EXPECT_DOUBLE_EQ(scan->T_world_sensor->translation().x(), 3.0);
+    EXPECT_DOUBLE_EQ(scan->timestamp, 0.3);
+    ASSERT_TRUE(reader->SkipTo(0));  // already past: nothing moves
+    EXPECT_EQ(reader->Next()->index, 4u);
+    EXPECT_FALSE(reader->Next());
+}
+
 TEST(KittiReader, BinWithBadSizeIsRejectedWithTheFileName) {
     test::TempDir dir;
     MakeKittiFolder(dir.path(), 2);

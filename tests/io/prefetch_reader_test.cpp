@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdio>
+#include <filesystem>
 
 #include "core/error.hpp"
+#include "io/cloud_files.hpp"
 #include "io/prefetch_reader.hpp"
+#include "test_data.hpp"
 
 namespace revisit {
 namespace {
@@ -54,6 +58,35 @@ TEST(PrefetchReader, SameScansStatsAndInfoAsTheInnerReaderAfterEveryScan) {
     }
     EXPECT_FALSE(reader.Next());
     EXPECT_FALSE(reader.Next());
+}
+
+TEST(PrefetchReader, SkipsWithTheInnerReaderOnlyBeforeReadingAhead) {
+    // A stream cannot skip: false, and nothing was read.
+    std::atomic<std::size_t> reads{0};
+    PrefetchReader stream(std::make_unique<CountingReader>(10, 1000, &reads), 2);
+    EXPECT_FALSE(stream.SkipTo(5));
+    EXPECT_EQ(reads.load(), 0u);
+    // A folder can, until the read-ahead thread owns it.
+    test::TempDir dir;
+    std::filesystem::create_directories(dir / "velodyne");
+    for (int i = 0; i < 4; ++i) {
+        char name[16];
+        std::snprintf(name, sizeof(name), "%06d.bin", i);
+        Scan scan;
+        scan.points.assign(std::size_t(i + 1), Eigen::Vector3f::Constant(float(i)));
+        scan.intensities.assign(scan.points.size(), 0.f);
+        SaveKittiBin(dir / "velodyne" / name, scan);
+    }
+    PrefetchReader folder(OpenDataset(dir.path()), 2);
+    ASSERT_TRUE(folder.SkipTo(2));
+    EXPECT_EQ(folder.Stats().scans, 2u);
+    const auto scan = folder.Next();
+    ASSERT_TRUE(scan);
+    EXPECT_EQ(scan->index, 2u);
+    EXPECT_EQ(scan->points.size(), 3u);
+    EXPECT_EQ(folder.Stats().scans, 3u);
+    EXPECT_FALSE(folder.SkipTo(3));  // reading ahead: the caller reads on
+    EXPECT_EQ(folder.Next()->index, 3u);
 }
 
 TEST(PrefetchReader, ErrorComesAtTheScanWhereTheInnerReaderFailed) {

@@ -84,21 +84,38 @@ TEST(CliRun, SimulatedSequenceRunsWithTheDefaults) {
     EXPECT_DOUBLE_EQ(LoadConfig({RunFolder::Open(dir / "set").config().string()}, {}).odometry.voxel_size, 0.7);
 }
 
-TEST(CliRun, ScansBeforeFromAreSkippedWithTheirOwnProgress) {
-    // Nothing seeks: the scans before --from are read and dropped, which on a long recording takes
-    // minutes; the user sees them counted, and the run holds the scans from --from on only.
+TEST(CliRun, FromGoesToItsScanInAFolderAndCountsTheScansAStreamDrops) {
     test::TempDir dir;
+    // A folder of scan files: the run starts at scan 10 without reading the ones before.
     const auto run = RunCli("run " + Quote(test::TinySimDataset().string()) + " --from 10 --to 20 --set output.write_report=false --out " +
                             Quote((dir / "run").string()));
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_NE(run.output.find("10/10 scans skipped (100%)"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("scans skipped"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("11/11 scans (100%)"), std::string::npos) << run.output;
-    EXPECT_EQ(ReadRunState(RunFolder::Open(dir / "run")).odometry.size(), 11u);
+    const RunState state = ReadRunState(RunFolder::Open(dir / "run"));
+    ASSERT_EQ(state.odometry.size(), 11u);
+    ASSERT_EQ(state.reference.size(), 11u);
+    const auto folder_scans = test::ReadAllScans(test::TinySimDataset());
+    ASSERT_GT(folder_scans.size(), 10u);
+    ASSERT_TRUE(folder_scans[10].T_world_sensor);
+    EXPECT_LT((state.reference.front().translation() - folder_scans[10].T_world_sensor->translation()).norm(), 1e-6);
     // `eval` reads the run's dataset again, from the same scan.
     const auto eval = RunCli("eval " + Quote((dir / "run").string()));
     ASSERT_EQ(eval.exit_code, 0) << eval.output;
-    EXPECT_NE(eval.output.find("10/10 scans skipped (100%)"), std::string::npos) << eval.output;
+    EXPECT_EQ(eval.output.find("scans skipped"), std::string::npos) << eval.output;
     EXPECT_NE(eval.output.find("11/11 scans (evaluation) (100%)"), std::string::npos) << eval.output;
+    // A stream (a rawlog) cannot seek: the scans before --from are read and dropped, which on a long
+    // recording takes minutes, and the user sees them counted.
+    const fs::path rawlog = dir / "walk.rawlog";
+    ASSERT_EQ(RunCli("simulate --preset indoor-2d-360 --scans 30 --quiet --out " + Quote(rawlog.string())).exit_code, 0);
+    const auto stream = RunCli("run " + Quote(rawlog.string()) + " --from 10 --to 20 --set output.write_report=false --out " +
+                               Quote((dir / "stream").string()));
+    ASSERT_EQ(stream.exit_code, 0) << stream.output;
+    EXPECT_NE(stream.output.find("10/10 scans skipped (100%)"), std::string::npos) << stream.output;
+    EXPECT_EQ(ReadRunState(RunFolder::Open(dir / "stream")).odometry.size(), 11u);
+    const auto stream_eval = RunCli("eval " + Quote((dir / "stream").string()));
+    ASSERT_EQ(stream_eval.exit_code, 0) << stream_eval.output;
+    EXPECT_NE(stream_eval.output.find("10/10 scans skipped (100%)"), std::string::npos) << stream_eval.output;
 }
 
 TEST(CliRun, InterruptedRunLeavesAValidPartialFolder) {

@@ -44,6 +44,31 @@ TEST(SimReader, ReadsTheScansTheKittiFolderOfTheSameConfigurationHolds) {
     EXPECT_FALSE(simulated->Next().has_value());
 }
 
+TEST(SimReader, SkipToGivesTheScanReadingThroughWouldAndCountsThePassedOnes) {
+    // --from on a simulated drive goes to its scan directly: each scan is ray-cast from its own pose.
+    SimConfig config = SimPreset("tiny");
+    config.max_scans = 6;
+    auto through = OpenSimulation(config, "sim:tiny");
+    std::optional<Scan> expected;
+    for (int k = 0; k <= 4; ++k) expected = through->Next();
+    ASSERT_TRUE(expected && expected->index == 4u);
+    auto skipping = OpenSimulation(config, "sim:tiny");
+    ASSERT_TRUE(skipping->SkipTo(4));
+    EXPECT_EQ(skipping->Stats().scans, 4u);
+    ASSERT_TRUE(skipping->SkipTo(2));  // already past: nothing moves
+    const auto scan = skipping->Next();
+    ASSERT_TRUE(scan);
+    EXPECT_EQ(scan->index, 4u);
+    EXPECT_TRUE(scan->points == expected->points);
+    EXPECT_EQ(scan->timestamp, expected->timestamp);
+    ASSERT_TRUE(scan->T_world_sensor && expected->T_world_sensor);
+    EXPECT_TRUE(scan->T_world_sensor->matrix() == expected->T_world_sensor->matrix());
+    EXPECT_EQ(skipping->Stats().scans, 5u);
+    ASSERT_TRUE(skipping->SkipTo(100));  // past the end: the end
+    EXPECT_FALSE(skipping->Next().has_value());
+    EXPECT_EQ(skipping->Stats().scans, 6u);
+}
+
 TEST(SimReader, OpenDatasetReadsAPresetByNameAndNamesAnUnknownOne) {
     RegisterSimulatorDatasets();
     EXPECT_TRUE(IsSchemeDataset("sim:tiny"));
