@@ -10,11 +10,12 @@
 namespace revisit {
 namespace fs = std::filesystem;
 
-void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
+void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config,
+                     const OccupancyProgress& on_occupancy_map) {
     const ExportGraph graph = RunPoseGraph(state, config, false);
     WriteFileAtomically(run.root() / "pose_graph.g2o", [&](std::ostream& out) { WriteG2o(out, graph); });
     WriteFileAtomically(run.root() / "closures.json", [&](std::ostream& out) { WriteClosuresJson(out, state, config); });
-    WriteRunOccupancy(run, state, config, run.root() / "occupancy.png");
+    WriteRunOccupancy(run, state, config, run.root() / "occupancy.png", on_occupancy_map);
 }
 
 fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {

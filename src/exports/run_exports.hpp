@@ -6,13 +6,15 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "exports/run_occupancy.hpp"
 #include "runfolder/run_folder.hpp"
 #include "runfolder/run_state.hpp"
 
 namespace revisit {
 
 /// pose_graph.g2o (per map), closures.json and occupancy.png + occupancy.yaml into the run folder.
-void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config);
+void WriteRunExports(const RunFolder& run, const RunState& state, const PipelineConfig& config,
+                     const OccupancyProgress& on_occupancy_map = {});
 
 struct ExportOptions {
     std::string format = "g2o";  ///< "g2o", "closures-json" or "occupancy"

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <unordered_map>
 #include <utility>
+
+#include <tsl/robin_map.h>
+#include <tsl/robin_set.h>
 
 #include "closures/ground_alignment.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/mix_bits.hpp"
 #include "core/quantile.hpp"
 #include "runfolder/folder_map_store.hpp"
 #include "runfolder/planar_scans.hpp"
@@ -22,6 +25,16 @@ constexpr double kLaserResolution = 0.05;  ///< [m] what 2D laser maps are commo
 
 Eigen::Vector2d Xy(const Eigen::Vector3d& p) { return p.head<2>(); }
 
+/// Counts the maps done for the caller's progress.
+struct MapCounter {
+    const OccupancyProgress& on_map;
+    std::size_t total;
+    std::size_t done = 0;
+    void Next() {
+        if (on_map) on_map(++done, total);
+    }
+};
+
 const Eigen::Isometry3d& ScanPose(const RunFolder& run, const RunState& state, int map_id, const PlanarScan& scan) {
     if (scan.position >= state.corrected.size()) {
         throw DatasetError(PlanarScansFile(run, map_id), "scan position " + std::to_string(scan.position) + " is past the run's " +
@@ -31,7 +44,9 @@ const Eigen::Isometry3d& ScanPose(const RunFolder& run, const RunState& state, i
 }
 
 /// Traces every stored beam twice over the maps: once for the extent, once into the grid.
-OccupancyGrid PlanarOccupancy(const RunFolder& run, const RunState& state, const OccupancyConfig& config) {
+OccupancyGrid PlanarOccupancy(const RunFolder& run, const RunState& state, const OccupancyConfig& config,
+                             const OccupancyProgress& on_map) {
+    MapCounter counted{on_map, 2 * state.maps.size()};
     Eigen::AlignedBox2d extent;
     for (const auto& map : state.maps) {
         for (const auto& scan : ReadPlanarScans(run, map.id)) {
@@ -39,6 +54,7 @@ OccupancyGrid PlanarOccupancy(const RunFolder& run, const RunState& state, const
             extent.extend(Xy(T_world_sensor.translation()));
             for (const auto& p : scan.points_in_sensor) extent.extend(Xy(T_world_sensor * Eigen::Vector3d(p.x(), p.y(), 0.0)));
         }
+        counted.Next();
     }
     if (!state.maps.empty() && extent.isEmpty() && !fs::exists(PlanarScansFile(run, state.maps.front().id))) {
         throw DatasetError(run.maps_dir(), "holds no scans_NNNN.bin: this 2D run was made by a revisit that did not keep its "
@@ -52,6 +68,7 @@ OccupancyGrid PlanarOccupancy(const RunFolder& run, const RunState& state, const
             const Eigen::Vector2d from = Xy(T_world_sensor.translation());
             for (const auto& p : scan.points_in_sensor) grid.AddRay(from, Xy(T_world_sensor * Eigen::Vector3d(p.x(), p.y(), 0.0)));
         }
+        counted.Next();
     }
     return grid;
 }
@@ -62,44 +79,57 @@ OccupancyGrid PlanarOccupancy(const RunFolder& run, const RunState& state, const
 /// the floor stands on it.
 class LocalGround {
   public:
+    using Cell = std::pair<long, long>;
+    struct CellHash {
+        std::size_t operator()(const Cell& k) const {
+            return std::size_t(MixBits((std::uint64_t(k.first) << 32) ^ (std::uint64_t(k.second) & 0xffffffffu)));
+        }
+    };
+
     LocalGround(const std::vector<Eigen::Vector3d>& points_levelled, double cell) : cell_(cell) {
+        tsl::robin_map<Cell, double, CellHash> lowest;
         for (const auto& q : points_levelled) {
-            const auto key = Key(q);
-            const auto it = lowest_.find(key);
-            if (it == lowest_.end() || q.z() < it->second) lowest_[key] = q.z();
+            const auto [it, added] = lowest.try_emplace(Key(q), q.z());
+            if (!added && q.z() < it->second) it.value() = q.z();
         }
-    }
-    /// Whether `q` lies within one cell of `sorted_cells`' (the cells of the sensor's path, sorted).
-    bool Beside(const Eigen::Vector3d& q, const std::vector<std::pair<long, long>>& sorted_cells) const {
-        const auto [x, y] = Key(q);
-        for (long dx = -1; dx <= 1; ++dx) {
-            for (long dy = -1; dy <= 1; ++dy) {
-                if (std::binary_search(sorted_cells.begin(), sorted_cells.end(), std::pair<long, long>{x + dx, y + dy})) return true;
+        // Each occupied cell's ground, the lowest of the 3 x 3 cells around it, once per cell: a map's
+        // points share few cells, and the heights are asked point by point (the same minimum).
+        ground_.reserve(lowest.size());
+        for (const auto& [key, own] : lowest) {
+            double ground = own;
+            for (long dx = -1; dx <= 1; ++dx) {
+                for (long dy = -1; dy <= 1; ++dy) {
+                    const auto it = lowest.find({key.first + dx, key.second + dy});
+                    if (it != lowest.end()) ground = std::min(ground, it->second);
+                }
             }
+            ground_.emplace(key, ground);
         }
-        return false;
     }
-    std::pair<long, long> Key(const Eigen::Vector3d& q) const {
+    /// The cells within one cell of `cells` (the sensor's path), for Beside.
+    static tsl::robin_set<Cell, CellHash> Around(const std::vector<Cell>& cells) {
+        tsl::robin_set<Cell, CellHash> around;
+        for (const auto& [x, y] : cells)
+            for (long dx = -1; dx <= 1; ++dx)
+                for (long dy = -1; dy <= 1; ++dy) around.insert({x + dx, y + dy});
+        return around;
+    }
+    /// Whether `q` lies within one cell of the path whose cells Around gave.
+    bool Beside(const Eigen::Vector3d& q, const tsl::robin_set<Cell, CellHash>& around_path) const {
+        return around_path.count(Key(q)) != 0;
+    }
+    Cell Key(const Eigen::Vector3d& q) const {
         return {static_cast<long>(std::floor(q.x() / cell_)), static_cast<long>(std::floor(q.y() / cell_))};
     }
+    /// `q` is one of the points the ground was made of (its cell is occupied).
     double HeightOf(const Eigen::Vector3d& q) const {
-        const auto [x, y] = Key(q);
-        double ground = q.z();
-        for (long dx = -1; dx <= 1; ++dx) {
-            for (long dy = -1; dy <= 1; ++dy) {
-                const auto it = lowest_.find({x + dx, y + dy});
-                if (it != lowest_.end()) ground = std::min(ground, it->second);
-            }
-        }
-        return q.z() - ground;
+        const auto it = ground_.find(Key(q));
+        return q.z() - (it == ground_.end() ? q.z() : std::min(q.z(), it->second));
     }
 
   private:
-    struct KeyHash {
-        std::size_t operator()(const std::pair<long, long>& k) const { return std::size_t(k.first) * 73856093u ^ std::size_t(k.second) * 19349669u; }
-    };
     double cell_;
-    std::unordered_map<std::pair<long, long>, double, KeyHash> lowest_;
+    tsl::robin_map<Cell, double, CellHash> ground_;  ///< per occupied cell: the lowest point within one cell
 };
 
 /// One map's points: (x, y) in the first map's levelled frame and the height above the ground beside it,
@@ -114,8 +144,10 @@ struct MapHeights {
 /// thickness is measured where the sensor went, which is ground by construction: a handheld map's
 /// floor is 0.3-0.5 m thick (range noise, the odometry's drift within the map), a car's road a few
 /// centimetres. Points within that thickness are ground, never obstacles.
-OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
+OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config,
+                            const OccupancyProgress& on_map) {
     const OccupancyConfig& o = config.occupancy;
+    MapCounter counted{on_map, 2 * state.maps.size()};
     std::optional<Eigen::Isometry3d> T_level_world;  ///< set by the first map, the same in both passes
     const auto measure = [&](const MapRecordSummary& map) {
         const auto points = ReadMapPoints(run, map.id);
@@ -127,11 +159,10 @@ OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const P
         for (std::size_t i = 0; i < points.size(); ++i) levelled[i] = T_ground_map * points[i].cast<double>();
         const LocalGround local(levelled, std::max(o.ground_cell, config.output.map_voxel));
         // The sensor's path in the levelled map frame (the map was built from the odometry poses).
-        std::vector<std::pair<long, long>> path;
+        std::vector<LocalGround::Cell> path;
         for (std::size_t k = map.first_scan; k <= map.last_scan && k < state.odometry.size(); ++k)
             path.push_back(local.Key(T_ground_map * map.T_world_map.inverse() * state.odometry[k].translation()));
-        std::sort(path.begin(), path.end());
-        path.erase(std::unique(path.begin(), path.end()), path.end());
+        const auto around_path = LocalGround::Around(path);
         MapHeights out;
         out.points.resize(points.size());
         std::vector<double> under_path;
@@ -139,7 +170,7 @@ OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const P
             const double height = local.HeightOf(levelled[i]);
             out.points[i] = {Xy(T_level_map * points[i].cast<double>()), height};
             // Below the band's middle: the floor, not the carrier or a ceiling over the path.
-            if (height < 0.5 * o.max_height && local.Beside(levelled[i], path)) under_path.push_back(height);
+            if (height < 0.5 * o.max_height && local.Beside(levelled[i], around_path)) under_path.push_back(height);
         }
         out.ground_thickness = Quantile(under_path, 0.9);
         return out;
@@ -149,6 +180,7 @@ OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const P
     for (const auto& map : state.maps) {
         for (const auto& [xy, height] : measure(map).points)
             if (height <= o.max_height) extent.extend(xy);
+        counted.Next();
     }
     const double wanted = o.resolution > 0.0 ? o.resolution : config.output.map_voxel;
     OccupancyGrid grid(extent, FittingResolution(extent, wanted, o.max_cells_per_side));
@@ -163,18 +195,21 @@ OccupancyGrid BandOccupancy(const RunFolder& run, const RunState& state, const P
                 grid.AddHit(xy);
             }
         }
+        counted.Next();
     }
     return grid;
 }
 
 }  // namespace
 
-OccupancyGrid BuildRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config) {
-    return config.odometry.planar ? PlanarOccupancy(run, state, config.occupancy) : BandOccupancy(run, state, config);
+OccupancyGrid BuildRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config,
+                                const OccupancyProgress& on_map) {
+    return config.odometry.planar ? PlanarOccupancy(run, state, config.occupancy, on_map) : BandOccupancy(run, state, config, on_map);
 }
 
-fs::path WriteRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config, const fs::path& image) {
-    const OccupancyGrid grid = BuildRunOccupancy(run, state, config);
+fs::path WriteRunOccupancy(const RunFolder& run, const RunState& state, const PipelineConfig& config, const fs::path& image,
+                           const OccupancyProgress& on_map) {
+    const OccupancyGrid grid = BuildRunOccupancy(run, state, config, on_map);
     fs::path yaml = image;
     yaml.replace_extension(".yaml");
     WriteFileAtomically(image, [&](std::ostream& out) {

@@ -384,7 +384,12 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
     state.peak_rss_kb = PeakRssKb();
     WriteRunState(run, state);
-    WriteRunExports(run, state, config);
+    std::optional<Progress> occupancy;  // a long run's grid reads every map twice: a minute at 100,000 scans
+    WriteRunExports(run, state, config, [&](std::size_t done, std::size_t total) {
+        if (!occupancy) occupancy.emplace(log, Progress::DetectMode(options.quiet), total, "map passes (occupancy grid)");
+        if (done < total) occupancy->Update(done);
+        else occupancy->Finish(done);
+    });
     if (!state.odometry_fallbacks.empty()) {
         log << "warning: the odometry fell back to the motion prediction on " << state.odometry_fallbacks.size() << " of "
             << state.odometry.size() << " scans" << (state.odometry_fallbacks.size() > kShownFallbacks ? " (the first shown above)" : "")
