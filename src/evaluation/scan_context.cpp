@@ -133,12 +133,12 @@ namespace {
 /// memory or from a file) for the candidates' distances.
 template <class DescriptorOf>
 std::vector<ScanContextCandidate> Search(const std::vector<Eigen::VectorXf>& ring_keys, const DescriptorOf& descriptor,
-                                         const ScanContextConfig& config) {
+                                         const ScanContextConfig& config, const SearchProgress& on_progress = {}) {
     CheckConfig(config);
     const std::size_t n = ring_keys.size();
     const RingKeyIndex index(ring_keys, n);
     std::vector<std::vector<ScanContextCandidate>> per_query(n);
-    tbb::parallel_for(config.exclude_recent, std::max(n, config.exclude_recent), [&](std::size_t q) {
+    const auto query = [&](std::size_t q) {
         // SCManager counts queries from the first that passes the size check and rebuilds every period.
         const std::size_t counter = q - config.exclude_recent;
         const std::size_t rebuilt_at = config.exclude_recent + (counter / config.rebuild_period) * config.rebuild_period;
@@ -150,7 +150,15 @@ std::vector<ScanContextCandidate> Search(const std::vector<Eigen::VectorXf>& rin
             const ScanContextMatch match = ScanContextDistance(query, descriptor(s), config);
             per_query[q].push_back({q, s, match.distance, match.shift});
         }
-    });
+    };
+    // In runs of queries, so that the caller can show progress between them (each query's candidates
+    // are its own: the same at any run length and thread count).
+    constexpr std::size_t kRun = 4096;
+    for (std::size_t begin = config.exclude_recent; begin < n; begin += kRun) {
+        const std::size_t end = std::min(n, begin + kRun);
+        tbb::parallel_for(begin, end, query);
+        if (on_progress) on_progress(end, n);
+    }
     std::vector<ScanContextCandidate> all;
     for (auto& candidates : per_query) all.insert(all.end(), candidates.begin(), candidates.end());
     return all;
@@ -165,7 +173,8 @@ std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContex
     return Search(ring_keys, [&](std::size_t scan) -> const ScanContextDescriptor& { return descriptors[scan]; }, config);
 }
 
-std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config) {
+std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config,
+                                                    const SearchProgress& on_progress) {
     // Neighbouring queries (one thread takes a run of them) verify mostly the same earlier scans: each
     // thread keeps the descriptors it read last instead of reading and decompressing them again.
     constexpr std::size_t kCachedPerThread = 256;
@@ -184,7 +193,7 @@ std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descr
             }
             return slot.descriptor;
         },
-        config);
+        config, on_progress);
 }
 
 std::vector<ScoredPair> ScanContextPairs(const std::vector<ScanContextCandidate>& candidates) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace revisit {
@@ -60,8 +61,11 @@ struct ScanContextCandidate {
 std::vector<ScanContextCandidate> SearchScanContext(const std::vector<ScanContextDescriptor>& descriptors,
                                                     const ScanContextConfig& config);
 class ScanContextFile;
+/// Called between runs of queries with how many of `total` scans are done (a minute at 100,000 scans).
+using SearchProgress = std::function<void(std::size_t done, std::size_t total)>;
 /// The same search over descriptors kept in a file (scan_context_file.hpp): the same candidates.
-std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config);
+std::vector<ScanContextCandidate> SearchScanContext(const ScanContextFile& descriptors, const ScanContextConfig& config,
+                                                    const SearchProgress& on_progress = {});
 
 /// Candidates as scored scan pairs (score = distance: sweep with Acceptance::kScoreAtMost).
 std::vector<ScoredPair> ScanContextPairs(const std::vector<ScanContextCandidate>& candidates);

@@ -13,6 +13,7 @@
 #include "pipeline/dataset_pass.hpp"
 #include "evaluation/scan_context.hpp"
 #include "pipeline/covered_run.hpp"
+#include "pipeline/progress.hpp"
 
 namespace revisit {
 namespace fs = std::filesystem;
@@ -236,7 +237,13 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
         e.methods.push_back(SummarizeMethod("elevation maps", e.sweeps["elevation"]));
     }
     if (pass.scan_context && pass.scan_context->size() > 0) {
-        const auto candidates = EvaluatedCandidates(SearchScanContext(*pass.scan_context, config.scan_context), scans);
+        std::optional<Progress> searched;  // each scan's ring-key search and its candidates: a minute at 100,000 scans
+        const auto on_search = [&](std::size_t done, std::size_t total) {
+            if (!searched) searched.emplace(log, Progress::DetectMode(options.quiet), total, "scans (ScanContext search)");
+            if (done < total) searched->Update(done);
+            else searched->Finish(done);
+        };
+        const auto candidates = EvaluatedCandidates(SearchScanContext(*pass.scan_context, config.scan_context, on_search), scans);
         e.sweeps["scan_context"] = ScoreScanContext(candidates, gt.scan_pairs);
         e.methods.push_back(SummarizeMethod("ScanContext", e.sweeps["scan_context"]));
     }

@@ -126,18 +126,23 @@ TEST(SearchScanContext, FollowsTheRebuildScheduleAndFindsTheRevisit) {
 
 TEST(SearchScanContext, FromAFileAsFromMemoryOverALongSequence) {
     // Long enough that the search's per-thread descriptor cache reuses its slots, with revisits whose
-    // query and candidate share a slot (256 scans apart).
+    // query and candidate share a slot (256 scans apart), and that it runs in more than one run of
+    // queries (4096), between which it reports progress.
     std::mt19937 rng(21);
     const ScanContextConfig config;
     std::vector<ScanContextDescriptor> descriptors;
     std::vector<std::vector<Eigen::Vector3f>> clouds;
-    for (int k = 0; k < 700; ++k) clouds.push_back(k >= 256 && k % 3 == 0 ? RotateAboutZ(clouds[std::size_t(k - 256)], 0.1 * k) : RandomCloud(rng, 300));
+    for (int k = 0; k < 4400; ++k) clouds.push_back(k >= 256 && k % 3 == 0 ? RotateAboutZ(clouds[std::size_t(k - 256)], 0.1 * k) : RandomCloud(rng, 300));
     for (const auto& cloud : clouds) descriptors.push_back(MakeScanContext(cloud, config));
     const auto candidates = SearchScanContext(descriptors, config);
     test::TempDir dir;
     ScanContextFile stored(dir / "sc.scratch", config.num_rings, config.num_sectors);
     for (const auto& descriptor : descriptors) stored.Add(descriptor);
-    const auto from_file = SearchScanContext(stored, config);
+    std::vector<std::pair<std::size_t, std::size_t>> reported;
+    const auto from_file = SearchScanContext(stored, config, [&](std::size_t done, std::size_t total) { reported.emplace_back(done, total); });
+    ASSERT_EQ(reported.size(), 2u);
+    EXPECT_EQ(reported[0], std::make_pair(std::size_t{config.exclude_recent + 4096}, std::size_t{4400}));
+    EXPECT_EQ(reported[1], std::make_pair(std::size_t{4400}, std::size_t{4400}));
     ASSERT_EQ(from_file.size(), candidates.size());
     std::size_t revisits_found = 0;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
