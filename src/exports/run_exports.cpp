@@ -44,7 +44,7 @@ fs::path ExportRun(const fs::path& run_folder, const ExportOptions& options) {
         if (out.extension() != ".png" && out.extension() != ".pgm") {
             throw ConfigError("--out " + out.string() + ": the occupancy image is a .png or a .pgm (its .yaml goes beside it)");
         }
-        return WriteRunOccupancy(run, state, config, out);
+        return WriteRunOccupancy(run, state, config, out, options.on_occupancy_map);
     }
     if (out.empty()) {
         out = run.root() / (options.format == "closures-json" ? "closures.json" : options.per_scan ? "pose_graph_scans.g2o" : "pose_graph.g2o");

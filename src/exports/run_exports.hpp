@@ -22,6 +22,7 @@ struct ExportOptions {
     /// `key=value` over the run's config.yaml: occupancy.* keys only (the graph and closures are the run's).
     std::vector<std::string> overrides;
     std::filesystem::path out;   ///< empty: into the run folder (pose_graph.g2o, pose_graph_scans.g2o, closures.json, occupancy.png)
+    OccupancyProgress on_occupancy_map;  ///< occupancy: after each map of each pass (empty: none)
 };
 
 /// Re-creates an export from a finished run folder; returns the file written (occupancy: its YAML). Throws ConfigError for an

@@ -80,6 +80,9 @@ TEST(OccupancyRun, ALaserRunTracesItsBeamsAtTheCorrectedPoses) {
     const auto exported = RunCli("export " + Quote(out.string()) + " --format occupancy --set occupancy.resolution=0.1 --out " +
                                  Quote(coarse.string()));
     ASSERT_EQ(exported.exit_code, 0) << exported.output;
+    // Every map read twice (the extent, then the cells), counted where the user sees it.
+    const std::string passes = std::to_string(2 * ReadRunState(RunFolder::Open(out)).maps.size());
+    EXPECT_NE(exported.output.find(passes + "/" + passes + " map passes (occupancy grid) (100%)"), std::string::npos) << exported.output;
     const ServedMap redrawn(dir / "coarse.yaml");
     EXPECT_DOUBLE_EQ(redrawn.resolution, 0.1);
     EXPECT_NEAR((redrawn.origin - map.origin).norm(), 0.0, 1e-9);
