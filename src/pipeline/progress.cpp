@@ -39,8 +39,12 @@ std::string Progress::Line(std::size_t done, const std::string& extra, double el
     } else {
         line << done << ' ' << unit_;
     }
-    line << "  " << std::fixed << std::setprecision(1) << rate << ' ' << unit_ << "/s";
-    if (total_ && rate > 0.0 && done < *total_) line << "  ETA " << FormatDuration((*total_ - done) / rate);
+    // A rate over less than a second is noise (work that was cached or trivial: millions per second).
+    constexpr double kMinRateSeconds = 1.0;
+    if (elapsed >= kMinRateSeconds) {
+        line << "  " << std::fixed << std::setprecision(1) << rate << ' ' << unit_ << "/s";
+        if (total_ && rate > 0.0 && done < *total_) line << "  ETA " << FormatDuration((*total_ - done) / rate);
+    }
     if (!extra.empty()) line << "  " << extra;
     return line.str();
 }
