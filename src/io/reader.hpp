@@ -70,9 +70,10 @@ class Reader {
     /// The next scan, or nullopt at the end. Throws DatasetError on corrupt input.
     virtual std::optional<Scan> Next() = 0;
     /// Where the format can go to a scan without reading the ones before it (a folder of scan files,
-    /// the simulator): makes the first scan whose index is at least `index` the next one and returns
-    /// true; the scans passed count in Stats().scans as read. A stream (a bag, a rawlog, a log file)
-    /// returns false and the caller reads and drops them (pipeline/read_from.hpp).
+    /// the public datasets' sequence folders, the simulator): makes the first scan whose index is at
+    /// least `index` the next one and returns true; the scans passed count in Stats().scans as read.
+    /// A stream (a bag, a rawlog, a log file) returns false and the caller reads and drops them
+    /// (pipeline/read_from.hpp).
     virtual bool SkipTo(std::size_t index) {
         (void)index;
         return false;
