@@ -1,6 +1,6 @@
 /// `revisit export RUN --format g2o|closures-json|occupancy`: a finished run's results for other tools.
 #include <iostream>
-#include <optional>
+#include <functional>
 
 #include "commands.hpp"
 #include "exports/run_exports.hpp"
@@ -39,12 +39,8 @@ void AddExportCommand(CLI::App& root, Action& action) {
         action = [o] {
             o->export_options.out = o->out;
             // The grid reads every local map twice: a minute on a 100,000-scan run.
-            std::optional<Progress> progress;
-            o->export_options.on_occupancy_map = [&](std::size_t done, std::size_t total) {
-                if (!progress) progress.emplace(std::cerr, Progress::DetectMode(o->quiet), total, "map passes (occupancy grid)");
-                if (done < total) progress->Update(done);
-                else progress->Finish(done);
-            };
+            CountedProgress progress(std::cerr, Progress::DetectMode(o->quiet), "map passes (occupancy grid)");
+            o->export_options.on_occupancy_map = std::ref(progress);
             std::cout << ExportRun(o->run, o->export_options).string() << '\n';
             return 0;
         };

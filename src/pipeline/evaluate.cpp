@@ -237,13 +237,10 @@ void EvaluateClosures(const RunFolder& run, const RunState& state, const std::ve
         e.methods.push_back(SummarizeMethod("elevation maps", e.sweeps["elevation"]));
     }
     if (pass.scan_context && pass.scan_context->size() > 0) {
-        std::optional<Progress> searched;  // each scan's ring-key search and its candidates: a minute at 100,000 scans
-        const auto on_search = [&](std::size_t done, std::size_t total) {
-            if (!searched) searched.emplace(log, Progress::DetectMode(options.quiet), total, "scans (ScanContext search)");
-            if (done < total) searched->Update(done);
-            else searched->Finish(done);
-        };
-        const auto candidates = EvaluatedCandidates(SearchScanContext(*pass.scan_context, config.scan_context, on_search), scans);
+        // Each scan's ring-key search and its candidates: a minute at 100,000 scans.
+        CountedProgress searched(log, Progress::DetectMode(options.quiet), "scans (ScanContext search)");
+        const auto candidates =
+            EvaluatedCandidates(SearchScanContext(*pass.scan_context, config.scan_context, std::ref(searched)), scans);
         e.sweeps["scan_context"] = ScoreScanContext(candidates, gt.scan_pairs);
         e.methods.push_back(SummarizeMethod("ScanContext", e.sweeps["scan_context"]));
     }

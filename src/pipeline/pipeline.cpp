@@ -331,15 +331,8 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
         progress.Message("revisit: " + std::to_string(state.odometry.size()) + " scans read; closing: the last map, the " +
                          "proximity pass over the corrected poses and the final pose graph");
     }
-    std::optional<Progress> final_pass;
-    pipeline.on_proximity_progress = [&](std::size_t done, std::size_t total) {
-        if (!final_pass) final_pass.emplace(log, Progress::DetectMode(options.quiet), total, "map pairs (proximity pass)");
-        final_pass->Update(done);
-        if (done == total) {
-            final_pass->Finish(done);
-            final_pass.reset();
-        }
-    };
+    CountedProgress final_pass(log, Progress::DetectMode(options.quiet), "map pairs (proximity pass)");
+    pipeline.on_proximity_progress = std::ref(final_pass);
     for (const auto& c : pipeline.Finish().closures) accepted += c.accepted;
     pipeline.on_proximity_progress = nullptr;
     if (const auto gate = pipeline.RmsGateUpdate()) state.setting_updates.push_back(*gate);
@@ -384,12 +377,9 @@ RunState RunPipeline(const RunOptions& options, const PipelineConfig& config, st
     state.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
     state.peak_rss_kb = PeakRssKb();
     WriteRunState(run, state);
-    std::optional<Progress> occupancy;  // a long run's grid reads every map twice: a minute at 100,000 scans
-    WriteRunExports(run, state, config, [&](std::size_t done, std::size_t total) {
-        if (!occupancy) occupancy.emplace(log, Progress::DetectMode(options.quiet), total, "map passes (occupancy grid)");
-        if (done < total) occupancy->Update(done);
-        else occupancy->Finish(done);
-    });
+    // A long run's grid reads every map twice: a minute at 100,000 scans.
+    CountedProgress occupancy(log, Progress::DetectMode(options.quiet), "map passes (occupancy grid)");
+    WriteRunExports(run, state, config, std::ref(occupancy));
     if (!state.odometry_fallbacks.empty()) {
         log << "warning: the odometry fell back to the motion prediction on " << state.odometry_fallbacks.size() << " of "
             << state.odometry.size() << " scans" << (state.odometry_fallbacks.size() > kShownFallbacks ? " (the first shown above)" : "")

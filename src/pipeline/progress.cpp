@@ -77,4 +77,14 @@ void Progress::Finish(std::size_t done, const std::string& extra) {
 
 void Progress::Restart() { start_ = last_print_ = std::chrono::steady_clock::now(); }
 
+void CountedProgress::operator()(std::size_t done, std::size_t total) {
+    if (!progress_) progress_.emplace(out_, mode_, total, unit_);
+    if (done < total) {
+        progress_->Update(done);
+        return;
+    }
+    progress_->Finish(done);
+    progress_.reset();
+}
+
 }  // namespace revisit

@@ -3,9 +3,11 @@
 /// lines otherwise (logs, CI), nothing when quiet.
 #include <chrono>
 #include <cstddef>
+#include <functional>  // std::ref, to pass a CountedProgress as a callback
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 
 namespace revisit {
 
@@ -42,6 +44,22 @@ class Progress {
     std::chrono::steady_clock::time_point start_;
     std::chrono::steady_clock::time_point last_print_;
     bool printed_ = false;
+};
+
+/// Progress of work that reports (done, total) as it goes and knows its total only then (a callback's
+/// arguments): made with the first report, finished (its final line) when done reaches total, and made
+/// anew by a report after that (the proximity pass's rounds each count their own pairs). Pass it as the
+/// callback with std::ref.
+class CountedProgress {
+  public:
+    CountedProgress(std::ostream& out, Progress::Mode mode, std::string unit) : out_(out), mode_(mode), unit_(std::move(unit)) {}
+    void operator()(std::size_t done, std::size_t total);
+
+  private:
+    std::ostream& out_;
+    Progress::Mode mode_;
+    std::string unit_;
+    std::optional<Progress> progress_;
 };
 
 }  // namespace revisit

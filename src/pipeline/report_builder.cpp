@@ -328,12 +328,10 @@ double WriteRunReport(const RunFolder& run, std::ostream& log, const ReportRunOp
     const ReportInput input = LoadReportInput(run);
     // The database is read once, up front: a damaged one is reported even when no rendered page needs keypoints.
     if (!input.map_ids.empty() && input.load_keypoints) input.load_keypoints(input.map_ids.front());
-    std::optional<Progress> progress;
+    CountedProgress progress(log, Progress::DetectMode(options.quiet), "pages");
     const auto stats = WriteReport(input, staged.path(), report_config, [&](std::size_t done, std::size_t total) {
         stop_if_interrupted();
-        if (!progress) progress.emplace(log, Progress::DetectMode(options.quiet), total, "pages");
-        if (done < total) progress->Update(done);
-        else progress->Finish(done);
+        progress(done, total);
     });
     stop_if_interrupted();
     const fs::path kept = staged.Commit();

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <functional>
 #include <sstream>
 #include <thread>
 
@@ -23,6 +24,16 @@ TEST(Progress, ARateNeedsASecondOfWork) {
     slow.Finish(10);
     EXPECT_NE(timed.str().find("10/10 items (100%)  "), std::string::npos) << timed.str();
     EXPECT_NE(timed.str().find(" items/s  in 0:01\n"), std::string::npos) << timed.str();
+}
+
+TEST(CountedProgress, EachCountToItsTotalGetsOneFinalLine) {
+    // The proximity pass's two rounds report their own totals through one callback.
+    std::ostringstream out;
+    CountedProgress rounds(out, Progress::Mode::kPlain, "map pairs");
+    const std::function<void(std::size_t, std::size_t)> callback = std::ref(rounds);
+    for (std::size_t done = 1; done <= 3; ++done) callback(done, 3);
+    for (std::size_t done = 1; done <= 2; ++done) callback(done, 2);
+    EXPECT_EQ(out.str(), "3/3 map pairs (100%)  in 0:00\n2/2 map pairs (100%)  in 0:00\n");
 }
 
 TEST(Progress, QuietPrintsNothingButMessages) {
